@@ -1,0 +1,114 @@
+//! A demonstration as it was recorded: stamps and positions, before any
+//! processing (method.md section 1).
+
+use serde::Serialize;
+
+/// Which clock a demo's stamps came from (method.md section 2.1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TimeSource {
+    /// The message's own stamp (ROS header stamp, Foxglove `timestamp`).
+    HeaderStamp,
+    /// The MCAP log time, used when stamps are missing or all zero.
+    LogTime,
+}
+
+/// One recorded demonstration: samples in file order, as decoded.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RawDemo {
+    /// The display name, `file:topic`.
+    pub name: String,
+    /// The file the demo came from, as the user named it.
+    pub file: String,
+    /// The topic (or other source key) inside the file.
+    pub topic: String,
+    /// Time stamps in integer nanoseconds, file order.
+    pub stamps_ns: Vec<i64>,
+    /// Positions in metres, one per stamp.
+    pub positions: Vec<[f64; 3]>,
+    /// Where the stamps came from.
+    pub time_source: TimeSource,
+}
+
+/// A summary of a demo for listings (`dmpscope info`, the demos panel).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DemoInfo {
+    /// The display name, `file:topic`.
+    pub name: String,
+    /// Number of samples as recorded.
+    pub n_samples: usize,
+    /// Last stamp minus first stamp, seconds.
+    pub duration_s: f64,
+    /// Median sampling rate in Hz (0 when undefined).
+    pub median_rate_hz: f64,
+    /// The position of the earliest sample.
+    pub start: [f64; 3],
+    /// The position of the latest sample.
+    pub goal: [f64; 3],
+    /// Where the stamps came from.
+    pub time_source: TimeSource,
+}
+
+impl RawDemo {
+    /// The samples in time order, equal stamps reduced to the first in file
+    /// order (method.md section 2.2). Returns `(stamps_ns, positions)`.
+    pub fn sorted_unique(&self) -> (Vec<i64>, Vec<[f64; 3]>) {
+        let mut order: Vec<usize> = (0..self.stamps_ns.len()).collect();
+        // `sort_by_key` is stable: of equal stamps the first in file order stays first.
+        order.sort_by_key(|&i| self.stamps_ns[i]);
+        let mut stamps = Vec::with_capacity(order.len());
+        let mut positions = Vec::with_capacity(order.len());
+        for i in order {
+            if stamps.last() == Some(&self.stamps_ns[i]) {
+                continue;
+            }
+            stamps.push(self.stamps_ns[i]);
+            positions.push(self.positions[i]);
+        }
+        (stamps, positions)
+    }
+
+    /// A summary for listings.
+    pub fn info(&self) -> DemoInfo {
+        let (stamps, positions) = self.sorted_unique();
+        let duration_s = match (stamps.first(), stamps.last()) {
+            (Some(a), Some(b)) => (b - a) as f64 * 1e-9,
+            _ => 0.0,
+        };
+        let intervals = stamp_intervals_s(&stamps);
+        let h = median(&intervals);
+        DemoInfo {
+            name: self.name.clone(),
+            n_samples: self.stamps_ns.len(),
+            duration_s,
+            median_rate_hz: if h > 0.0 { 1.0 / h } else { 0.0 },
+            start: positions.first().copied().unwrap_or([0.0; 3]),
+            goal: positions.last().copied().unwrap_or([0.0; 3]),
+            time_source: self.time_source,
+        }
+    }
+}
+
+/// Successive differences of sorted integer stamps, in seconds.
+pub fn stamp_intervals_s(stamps_ns: &[i64]) -> Vec<f64> {
+    stamps_ns
+        .windows(2)
+        .map(|w| (w[1] - w[0]) as f64 * 1e-9)
+        .collect()
+}
+
+/// The median (the mean of the two middle values for an even count, as
+/// NumPy's); 0 for an empty slice.
+pub fn median(values: &[f64]) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    let m = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        (v[m - 1] + v[m]) / 2.0
+    }
+}

@@ -1,0 +1,142 @@
+//! Gain extraction (method.md section 6): the grid minimum of `J`, refined by
+//! Nelder-Mead in the grid's even coordinates (ln for log axes), kept inside
+//! the grid's box, with the edge flag the user must see.
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::landscape::Landscape;
+use crate::model::{Model, PointEval};
+use crate::nelder_mead;
+
+/// The simplex span (in the axes' coordinates) at which the refinement stops.
+pub const SPAN_TOLERANCE: f64 = 1e-6;
+/// An optimum this close to a bound (in coordinates) counts as on the edge.
+pub const EDGE_TOLERANCE: f64 = 1e-6;
+
+/// Which sides of the box an optimum touches.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Edges {
+    /// At the smallest D/M.
+    pub dm_low: bool,
+    /// At the largest D/M.
+    pub dm_high: bool,
+    /// At the smallest K/M.
+    pub km_low: bool,
+    /// At the largest K/M.
+    pub km_high: bool,
+}
+
+impl Edges {
+    /// Whether any side is touched.
+    pub fn any(&self) -> bool {
+        self.dm_low || self.dm_high || self.km_low || self.km_high
+    }
+
+    /// The touched sides in words, e.g. `K/M = max`.
+    pub fn describe(&self) -> String {
+        let mut parts = Vec::new();
+        for (on, text) in [
+            (self.dm_low, "D/M at its minimum"),
+            (self.dm_high, "D/M at its maximum"),
+            (self.km_low, "K/M at its minimum"),
+            (self.km_high, "K/M at its maximum"),
+        ] {
+            if on {
+                parts.push(text);
+            }
+        }
+        parts.join(", ")
+    }
+}
+
+/// The extracted gains.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Extraction {
+    /// The evaluation at the optimum.
+    pub eval: PointEval,
+    /// `J` at the optimum for `k`.
+    pub j: f64,
+    /// The `k` used.
+    pub k: f64,
+    /// The grid point the refinement started from, `(i_dm, i_km)`.
+    pub grid_min: (usize, usize),
+    /// `J` at that grid point.
+    pub grid_min_j: f64,
+    /// The box sides the optimum lies on.
+    pub edges: Edges,
+    /// Nelder-Mead iterations.
+    pub iterations: usize,
+    /// Whether the simplex shrank below the span tolerance.
+    pub converged: bool,
+}
+
+impl Extraction {
+    /// Whether the optimum lies on the box's edge.
+    pub fn on_edge(&self) -> bool {
+        self.edges.any()
+    }
+}
+
+/// Extracts the gains minimising `J = S + k sum d` from a complete landscape.
+pub fn extract(model: &Model, landscape: &Landscape, k: f64) -> Result<Extraction> {
+    if !k.is_finite() || k < 0.0 {
+        return Err(Error::InvalidSetting(format!(
+            "k must be finite and >= 0, got {k}"
+        )));
+    }
+    let (i_dm, i_km, grid_min_j) = landscape
+        .argmin(k)
+        .ok_or_else(|| Error::InvalidSetting("the landscape has no computed point".into()))?;
+    let (ax_dm, ax_km) = (landscape.grid.dm, landscape.grid.km);
+    let lo = [ax_dm.to_coord(ax_dm.lo), ax_km.to_coord(ax_km.lo)];
+    let hi = [ax_dm.to_coord(ax_dm.hi), ax_km.to_coord(ax_km.hi)];
+    let x0 = [
+        ax_dm.to_coord(landscape.dm[i_dm]),
+        ax_km.to_coord(landscape.km[i_km]),
+    ];
+    // One grid step along each axis, pointing inward at the upper edge.
+    let step_dm = if i_dm + 1 == ax_dm.n {
+        -ax_dm.coord_step()
+    } else {
+        ax_dm.coord_step()
+    };
+    let step_km = if i_km + 1 == ax_km.n {
+        -ax_km.coord_step()
+    } else {
+        ax_km.coord_step()
+    };
+    let start = [x0, [x0[0] + step_dm, x0[1]], [x0[0], x0[1] + step_km]];
+    let clip = |p: [f64; 2]| [p[0].clamp(lo[0], hi[0]), p[1].clamp(lo[1], hi[1])];
+    let to_gains = |p: [f64; 2]| (ax_dm.from_coord(p[0]), ax_km.from_coord(p[1]));
+    let found = nelder_mead::minimise(
+        |p| {
+            let (dm, km) = to_gains(p);
+            model.evaluate(dm, km).j(k)
+        },
+        clip,
+        start,
+        SPAN_TOLERANCE,
+        2000,
+    );
+    // The grid point itself is a candidate too (NM never returns worse).
+    let (dm, km) = to_gains(found.x);
+    let eval = model.evaluate(dm, km);
+    let x = found.x;
+    let edges = Edges {
+        dm_low: x[0] - lo[0] < EDGE_TOLERANCE,
+        dm_high: hi[0] - x[0] < EDGE_TOLERANCE,
+        km_low: x[1] - lo[1] < EDGE_TOLERANCE,
+        km_high: hi[1] - x[1] < EDGE_TOLERANCE,
+    };
+    Ok(Extraction {
+        j: eval.j(k),
+        eval,
+        k,
+        grid_min: (i_dm, i_km),
+        grid_min_j,
+        edges,
+        iterations: found.iterations,
+        converged: found.converged,
+    })
+}

@@ -1,0 +1,413 @@
+//! `sum d` and `S` over a grid of gain pairs (method.md section 6), and the
+//! engine that fills it: in lanes, coarse levels first, in slices or on all
+//! cores, with progress and cancellation.
+//!
+//! `J` is not stored: it is `S + k sum d` for whatever `k` the user picks, so
+//! changing `k` never integrates again ([`Landscape::j`]).
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::model::{LANES, Model};
+use crate::similarity::SimilarityScratch;
+
+/// How an axis spaces its values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AxisScale {
+    /// Geometric spacing (NumPy's `geomspace`).
+    Log,
+    /// Even spacing (NumPy's `linspace`).
+    Linear,
+}
+
+/// One axis of the gain grid.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Axis {
+    /// The first value (> 0).
+    pub lo: f64,
+    /// The last value (> lo).
+    pub hi: f64,
+    /// Number of values (>= 2).
+    pub n: usize,
+    /// The spacing.
+    pub scale: AxisScale,
+}
+
+impl Axis {
+    /// The paper's default axis: 0.1 to 1000, 128 values, log-spaced.
+    pub fn paper() -> Self {
+        Self {
+            lo: 0.1,
+            hi: 1000.0,
+            n: 128,
+            scale: AxisScale::Log,
+        }
+    }
+
+    /// Checks the axis, naming it in the error.
+    pub fn validate(&self, name: &str) -> Result<()> {
+        if !(self.lo.is_finite() && self.hi.is_finite() && self.lo > 0.0 && self.hi > self.lo) {
+            return Err(Error::InvalidSetting(format!(
+                "{name} range must satisfy 0 < lo < hi, got {} .. {}",
+                self.lo, self.hi
+            )));
+        }
+        if self.n < 2 || self.n > 4096 {
+            return Err(Error::InvalidSetting(format!(
+                "{name} needs 2 to 4096 values, got {}",
+                self.n
+            )));
+        }
+        Ok(())
+    }
+
+    /// The axis values.
+    pub fn values(&self) -> Vec<f64> {
+        let n = self.n;
+        match self.scale {
+            AxisScale::Linear => {
+                let step = (self.hi - self.lo) / (n - 1) as f64;
+                let mut v: Vec<f64> = (0..n).map(|i| i as f64 * step + self.lo).collect();
+                v[n - 1] = self.hi;
+                v
+            }
+            AxisScale::Log => {
+                let (a, b) = (self.lo.log10(), self.hi.log10());
+                let step = (b - a) / (n - 1) as f64;
+                let mut v: Vec<f64> = (0..n).map(|i| 10f64.powf(i as f64 * step + a)).collect();
+                v[0] = self.lo;
+                v[n - 1] = self.hi;
+                v
+            }
+        }
+    }
+
+    /// Maps a value to the coordinate the axis is even in (ln for log).
+    pub fn to_coord(&self, value: f64) -> f64 {
+        match self.scale {
+            AxisScale::Log => value.ln(),
+            AxisScale::Linear => value,
+        }
+    }
+
+    /// The inverse of [`Axis::to_coord`].
+    pub fn from_coord(&self, coord: f64) -> f64 {
+        match self.scale {
+            AxisScale::Log => coord.exp(),
+            AxisScale::Linear => coord,
+        }
+    }
+
+    /// One grid step in coordinates.
+    pub fn coord_step(&self) -> f64 {
+        (self.to_coord(self.hi) - self.to_coord(self.lo)) / (self.n - 1) as f64
+    }
+}
+
+/// The gain grid: D/M along the first index, K/M along the second.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Grid {
+    /// The D/M axis.
+    pub dm: Axis,
+    /// The K/M axis.
+    pub km: Axis,
+}
+
+impl Default for Grid {
+    fn default() -> Self {
+        Self {
+            dm: Axis::paper(),
+            km: Axis::paper(),
+        }
+    }
+}
+
+impl Grid {
+    /// Checks both axes.
+    pub fn validate(&self) -> Result<()> {
+        self.dm.validate("D/M")?;
+        self.km.validate("K/M")
+    }
+
+    /// Number of grid points.
+    pub fn len(&self) -> usize {
+        self.dm.n * self.km.n
+    }
+
+    /// Whether the grid has no points (never, once validated).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// The order in which a job visits the grid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FillOrder {
+    /// Row by row.
+    Raster,
+    /// Every 2^L-th point of both axes first, then the points that halve the
+    /// spacing, down to every point: a coarse preview appears at once.
+    CoarseToFine,
+}
+
+/// The computed grids, `[i_dm][i_km]` row-major.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Landscape {
+    /// The grid.
+    pub grid: Grid,
+    /// The D/M values.
+    pub dm: Vec<f64>,
+    /// The K/M values.
+    pub km: Vec<f64>,
+    /// `sum d` per grid point (NaN where not computed yet).
+    pub d_sum: Vec<f64>,
+    /// `S` per grid point (NaN where not computed yet).
+    pub s: Vec<f64>,
+    /// How many points are computed.
+    pub filled: usize,
+}
+
+impl Landscape {
+    fn empty(grid: Grid) -> Self {
+        let len = grid.len();
+        Self {
+            grid,
+            dm: grid.dm.values(),
+            km: grid.km.values(),
+            d_sum: vec![f64::NAN; len],
+            s: vec![f64::NAN; len],
+            filled: 0,
+        }
+    }
+
+    /// The flat index of `(i_dm, i_km)`.
+    pub fn index(&self, i_dm: usize, i_km: usize) -> usize {
+        i_dm * self.grid.km.n + i_km
+    }
+
+    /// Whether every point is computed.
+    pub fn is_complete(&self) -> bool {
+        self.filled == self.grid.len()
+    }
+
+    /// `J = S + k sum d` at every point (recombination, no integration).
+    pub fn j(&self, k: f64) -> Vec<f64> {
+        self.s
+            .iter()
+            .zip(&self.d_sum)
+            .map(|(s, d)| s + k * d)
+            .collect()
+    }
+
+    /// The computed point of least `J` for this `k`: `(i_dm, i_km, J)`.
+    pub fn argmin(&self, k: f64) -> Option<(usize, usize, f64)> {
+        let n_km = self.grid.km.n;
+        self.j(k)
+            .into_iter()
+            .enumerate()
+            .filter(|(_, j)| !j.is_nan())
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(i, j)| (i / n_km, i % n_km, j))
+    }
+
+    /// A grid of one quantity as rows `[i_dm][i_km]`.
+    pub fn rows(&self, values: &[f64]) -> Vec<Vec<f64>> {
+        values.chunks(self.grid.km.n).map(<[f64]>::to_vec).collect()
+    }
+
+    /// For a partly filled landscape: each point's value or, if not computed
+    /// yet, that of the nearest computed coarser point to its lower left.
+    pub fn preview(&self, values: &[f64]) -> Vec<f64> {
+        let (n_dm, n_km) = (self.grid.dm.n, self.grid.km.n);
+        let mut out = values.to_vec();
+        for i in 0..n_dm {
+            for j in 0..n_km {
+                let mut stride = 1;
+                while out[i * n_km + j].is_nan() && stride < n_dm.max(n_km) {
+                    stride *= 2;
+                    let (pi, pj) = (i - i % stride, j - j % stride);
+                    out[i * n_km + j] = values[pi * n_km + pj];
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The visiting order of a grid.
+pub fn fill_order(grid: &Grid, order: FillOrder) -> Vec<(u32, u32)> {
+    let (n_dm, n_km) = (grid.dm.n as u32, grid.km.n as u32);
+    let all = (0..n_dm).flat_map(|i| (0..n_km).map(move |j| (i, j)));
+    match order {
+        FillOrder::Raster => all.collect(),
+        FillOrder::CoarseToFine => {
+            // The level of a point: the largest stride that divides both indices.
+            let top = (n_dm.max(n_km).next_power_of_two() / 2).max(1);
+            let level = |(i, j): (u32, u32)| {
+                let mut stride = top;
+                while stride > 1 && (i % stride != 0 || j % stride != 0) {
+                    stride /= 2;
+                }
+                stride
+            };
+            let mut points: Vec<(u32, u32)> = all.collect();
+            // Stable: raster order within a level.
+            points.sort_by_key(|&p| std::cmp::Reverse(level(p)));
+            points
+        }
+    }
+}
+
+/// A landscape being filled: call [`LandscapeJob::step`] for slices (a
+/// browser frame) or [`LandscapeJob::run`] to finish it with progress.
+pub struct LandscapeJob {
+    model: Arc<Model>,
+    order: Vec<(u32, u32)>,
+    next: usize,
+    landscape: Landscape,
+    scratch: SimilarityScratch,
+}
+
+impl LandscapeJob {
+    /// A job over `grid` in the given order.
+    pub fn new(model: Arc<Model>, grid: Grid, order: FillOrder) -> Result<Self> {
+        grid.validate()?;
+        Ok(Self {
+            model,
+            order: fill_order(&grid, order),
+            next: 0,
+            landscape: Landscape::empty(grid),
+            scratch: SimilarityScratch::default(),
+        })
+    }
+
+    /// Points done and in all.
+    pub fn progress(&self) -> (usize, usize) {
+        (self.next, self.order.len())
+    }
+
+    /// Whether every point is computed.
+    pub fn is_done(&self) -> bool {
+        self.next == self.order.len()
+    }
+
+    /// The landscape so far.
+    pub fn landscape(&self) -> &Landscape {
+        &self.landscape
+    }
+
+    /// The finished (or partial) landscape.
+    pub fn into_landscape(self) -> Landscape {
+        self.landscape
+    }
+
+    /// Computes up to `max_points` more points on this thread (rounded up to
+    /// whole lanes). Returns whether the job is done.
+    pub fn step(&mut self, max_points: usize) -> bool {
+        let end = (self.next + max_points.max(1)).min(self.order.len());
+        let batch = &self.order[self.next..end];
+        let values = eval_points(&self.model, &self.landscape, batch, &mut self.scratch);
+        store(&mut self.landscape, batch, &values);
+        self.next = end;
+        self.is_done()
+    }
+
+    /// Finishes the job, on all cores with the `parallel` feature, calling
+    /// `progress(done, total)` between tiles and stopping with
+    /// [`Error::Cancelled`] once `cancel` is set (the points done so far stay).
+    pub fn run(
+        &mut self,
+        cancel: &AtomicBool,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<()> {
+        const TILE: usize = 1024;
+        while !self.is_done() {
+            if cancel.load(Ordering::Relaxed) {
+                return Err(Error::Cancelled);
+            }
+            let end = (self.next + TILE).min(self.order.len());
+            let batch = &self.order[self.next..end];
+            let values = eval_tile(&self.model, &self.landscape, batch, &mut self.scratch);
+            store(&mut self.landscape, batch, &values);
+            self.next = end;
+            progress(self.next, self.order.len());
+        }
+        Ok(())
+    }
+}
+
+/// `(sum d, S)` of a tile of points, spread over all cores.
+#[cfg(feature = "parallel")]
+fn eval_tile(
+    model: &Model,
+    landscape: &Landscape,
+    batch: &[(u32, u32)],
+    _scratch: &mut SimilarityScratch,
+) -> Vec<(f64, f64)> {
+    use rayon::prelude::*;
+    batch
+        .par_chunks(LANES * 4)
+        .map_init(SimilarityScratch::default, |scratch, chunk| {
+            eval_points(model, landscape, chunk, scratch)
+        })
+        .flatten_iter()
+        .collect()
+}
+
+/// `(sum d, S)` of a tile of points on this thread.
+#[cfg(not(feature = "parallel"))]
+fn eval_tile(
+    model: &Model,
+    landscape: &Landscape,
+    batch: &[(u32, u32)],
+    scratch: &mut SimilarityScratch,
+) -> Vec<(f64, f64)> {
+    eval_points(model, landscape, batch, scratch)
+}
+
+/// `(sum d, S)` of each point, lane by lane.
+fn eval_points(
+    model: &Model,
+    landscape: &Landscape,
+    points: &[(u32, u32)],
+    scratch: &mut SimilarityScratch,
+) -> Vec<(f64, f64)> {
+    let mut out = Vec::with_capacity(points.len());
+    for chunk in points.chunks(LANES) {
+        // A short last chunk repeats its first point in the spare lanes.
+        let gains = |l: usize| {
+            let (i, j) = chunk[if l < chunk.len() { l } else { 0 }];
+            (landscape.dm[i as usize], landscape.km[j as usize])
+        };
+        let dm = std::array::from_fn(|l| gains(l).0);
+        let km = std::array::from_fn(|l| gains(l).1);
+        let values = model.evaluate_lanes(dm, km, scratch);
+        out.extend_from_slice(&values[..chunk.len()]);
+    }
+    out
+}
+
+fn store(landscape: &mut Landscape, points: &[(u32, u32)], values: &[(f64, f64)]) {
+    for (&(i, j), &(d, s)) in points.iter().zip(values) {
+        let idx = landscape.index(i as usize, j as usize);
+        landscape.d_sum[idx] = d;
+        landscape.s[idx] = s;
+    }
+    landscape.filled += points.len();
+}
+
+/// Computes the whole landscape (all cores with the `parallel` feature).
+pub fn compute(
+    model: Arc<Model>,
+    grid: Grid,
+    cancel: &AtomicBool,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Landscape> {
+    let mut job = LandscapeJob::new(model, grid, FillOrder::CoarseToFine)?;
+    job.run(cancel, progress)?;
+    Ok(job.into_landscape())
+}

@@ -1,0 +1,45 @@
+//! # dmpscope-core
+//!
+//! Pure computation behind dmpscope: reading hand-tracker recordings, preparing
+//! each demonstration, fitting Dynamic Movement Primitives, and mapping the
+//! human-likeness error `d`, the cross-demo similarity `S` and the objective
+//! `J = S + k * sum(d)` over a grid of gain ratios (D/M, K/M).
+//!
+//! The method, every number of it, is fixed in `shared/method.md`; each module
+//! names the section it implements. Data flows one way:
+//!
+//! ```text
+//! bytes -> RawDemo (io) -> PreparedDemo (prepare) -> Model (dmp, similarity)
+//!       -> Landscape (landscape) -> Extraction, Table I (extract, presets)
+//! ```
+//!
+//! Nothing here needs threads, a GPU or a file system: the loaders take any
+//! [`std::io::Read`], the landscape engine runs in slices when asked to, and
+//! rayon is used only behind the `parallel` feature.
+
+pub mod demo;
+pub mod dmp;
+pub mod error;
+pub mod extract;
+pub mod io;
+pub mod landscape;
+pub mod model;
+pub mod nelder_mead;
+pub mod prepare;
+pub mod presets;
+pub mod savgol;
+pub mod similarity;
+pub mod synth;
+
+pub use demo::{DemoInfo, RawDemo, TimeSource};
+pub use error::{Error, Result};
+pub use extract::{Extraction, extract};
+pub use landscape::{Axis, AxisScale, Grid, Landscape, LandscapeJob};
+pub use model::{Model, PointEval, Rollout};
+pub use prepare::{PrepSettings, PreparedDemo, prepare};
+pub use presets::{PAPER_PRESETS, Preset, TableRow};
+
+/// The number of points on the unit-time integration grid (method.md section 2.6).
+pub const DEFAULT_GRID_POINTS: usize = 1001;
+/// The paper's weight of the summed human-likeness error in J (method.md section 6).
+pub const DEFAULT_K: f64 = 20.0;

@@ -1,0 +1,198 @@
+//! From a raw recording to a demonstration on the unit-time grid
+//! (method.md section 2): sort and de-duplicate stamps, resample uniformly,
+//! Savitzky-Golay, normalise time, resample onto the integration grid.
+
+use serde::{Deserialize, Serialize};
+
+use crate::demo::{RawDemo, median, stamp_intervals_s};
+use crate::error::{Error, Location, Result};
+use crate::savgol::SavGol;
+
+/// Settings of the preprocessing (method.md section 2; the paper's values
+/// are the defaults).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct PrepSettings {
+    /// Savitzky-Golay window in samples (odd).
+    pub sg_window: usize,
+    /// Savitzky-Golay polynomial order.
+    pub sg_order: usize,
+    /// Points of the unit-time integration grid.
+    pub grid_points: usize,
+}
+
+impl Default for PrepSettings {
+    fn default() -> Self {
+        Self {
+            sg_window: 21,
+            sg_order: 3,
+            grid_points: crate::DEFAULT_GRID_POINTS,
+        }
+    }
+}
+
+/// A demonstration on the unit-time grid `s = t / T`, shifted so that it
+/// starts at the origin.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreparedDemo {
+    /// The demo's name, `file:topic`.
+    pub name: String,
+    /// Duration `T` in seconds (the paper's M).
+    pub duration_s: f64,
+    /// The median sample interval `h`, seconds.
+    pub median_interval_s: f64,
+    /// Points of the uniform resampling, `n0`.
+    pub n0: usize,
+    /// The first resampled raw sample, the shift applied to everything.
+    pub p0: [f64; 3],
+    /// The goal `g = y_raw(1)`.
+    pub goal: [f64; 3],
+    /// The raw (unsmoothed) path, the comparison target of `d`.
+    pub y_raw: Vec<[f64; 3]>,
+    /// The smoothed path.
+    pub y: Vec<[f64; 3]>,
+    /// Its derivative with respect to unit time.
+    pub yd: Vec<[f64; 3]>,
+    /// Its second derivative with respect to unit time.
+    pub ydd: Vec<[f64; 3]>,
+}
+
+impl PreparedDemo {
+    /// Points on the unit-time grid.
+    pub fn len(&self) -> usize {
+        self.y.len()
+    }
+
+    /// Whether the grid is empty (never, for a prepared demo).
+    pub fn is_empty(&self) -> bool {
+        self.y.is_empty()
+    }
+}
+
+/// `n` points from 0 to `stop` as NumPy's `linspace` makes them
+/// (`i * step`, the last point exactly `stop`).
+pub fn linspace(stop: f64, n: usize) -> Vec<f64> {
+    let step = stop / (n - 1) as f64;
+    let mut v: Vec<f64> = (0..n).map(|i| i as f64 * step).collect();
+    if let Some(last) = v.last_mut() {
+        *last = stop;
+    }
+    v
+}
+
+/// Linear interpolation as NumPy's `interp`: `xp` increasing, `x` inside
+/// `[xp[0], xp[last]]` (clamped outside).
+pub fn interp(x: &[f64], xp: &[f64], fp: &[f64]) -> Vec<f64> {
+    let last = xp.len() - 1;
+    x.iter()
+        .map(|&xv| {
+            if xv <= xp[0] {
+                return fp[0];
+            }
+            if xv >= xp[last] {
+                return fp[last];
+            }
+            // xp[j] <= xv < xp[j + 1]
+            let j = xp.partition_point(|&p| p <= xv) - 1;
+            if xp[j] == xv {
+                return fp[j];
+            }
+            let slope = (fp[j + 1] - fp[j]) / (xp[j + 1] - xp[j]);
+            slope * (xv - xp[j]) + fp[j]
+        })
+        .collect()
+}
+
+fn column(v: &[[f64; 3]], axis: usize) -> Vec<f64> {
+    v.iter().map(|p| p[axis]).collect()
+}
+
+fn zip3(cols: [Vec<f64>; 3]) -> Vec<[f64; 3]> {
+    let [x, y, z] = cols;
+    x.into_iter()
+        .zip(y)
+        .zip(z)
+        .map(|((x, y), z)| [x, y, z])
+        .collect()
+}
+
+/// Prepares one demonstration (method.md sections 2.2-2.7).
+pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
+    let sg = SavGol::new(settings.sg_window, settings.sg_order)?;
+    if settings.grid_points < 3 {
+        return Err(Error::InvalidSetting(format!(
+            "the integration grid needs at least 3 points, got {}",
+            settings.grid_points
+        )));
+    }
+    for (i, p) in raw.positions.iter().enumerate() {
+        if let Some(axis) = p.iter().position(|v| !v.is_finite()) {
+            return Err(Error::NonFinite {
+                at: Location::file(&raw.file).topic(&raw.topic).sample(i),
+                field: ["position.x", "position.y", "position.z"][axis],
+            });
+        }
+    }
+    let (stamps, positions) = raw.sorted_unique();
+    let min = sg.window();
+    if stamps.len() < 2 {
+        return Err(Error::TooFewSamples {
+            demo: raw.name.clone(),
+            n0: stamps.len(),
+            min,
+        });
+    }
+    let first = stamps[0];
+    let t: Vec<f64> = stamps.iter().map(|s| (s - first) as f64 * 1e-9).collect();
+    let total = t[t.len() - 1];
+    let h = median(&stamp_intervals_s(&stamps));
+    let ratio = total / h;
+    if !ratio.is_finite() || ratio > 1e8 {
+        return Err(Error::BadTiming {
+            demo: raw.name.clone(),
+            reason: format!("duration {total} s over median interval {h} s gives no usable grid"),
+        });
+    }
+    let n0 = ratio.round_ties_even() as usize + 1;
+    if n0 < min {
+        return Err(Error::TooFewSamples {
+            demo: raw.name.clone(),
+            n0,
+            min,
+        });
+    }
+    let grid_t = linspace(total, n0);
+    let spacing = total / (n0 - 1) as f64;
+    let s = linspace(1.0, settings.grid_points);
+    let query_t: Vec<f64> = s.iter().map(|s| s * total).collect();
+
+    let mut p0 = [0.0; 3];
+    let mut cols: [[Vec<f64>; 3]; 4] = Default::default();
+    for axis in 0..3 {
+        let resampled = interp(&grid_t, &t, &column(&positions, axis));
+        p0[axis] = resampled[0];
+        let smooth = sg.apply(&resampled, spacing)?;
+        let shifted: Vec<f64> = resampled.iter().map(|v| v - p0[axis]).collect();
+        let smooth_shifted: Vec<f64> = smooth.value.iter().map(|v| v - p0[axis]).collect();
+        let vel: Vec<f64> = smooth.d1.iter().map(|v| v * total).collect();
+        let acc: Vec<f64> = smooth.d2.iter().map(|v| v * total * total).collect();
+        cols[0][axis] = interp(&query_t, &grid_t, &shifted);
+        cols[1][axis] = interp(&query_t, &grid_t, &smooth_shifted);
+        cols[2][axis] = interp(&query_t, &grid_t, &vel);
+        cols[3][axis] = interp(&query_t, &grid_t, &acc);
+    }
+    let [c_raw, c_y, c_yd, c_ydd] = cols;
+    let y_raw = zip3(c_raw);
+    let goal = y_raw[y_raw.len() - 1];
+    Ok(PreparedDemo {
+        name: raw.name.clone(),
+        duration_s: total,
+        median_interval_s: h,
+        n0,
+        p0,
+        goal,
+        y_raw,
+        y: zip3(c_y),
+        yd: zip3(c_yd),
+        ydd: zip3(c_ydd),
+    })
+}

@@ -1,0 +1,253 @@
+//! The core against an independent NumPy/SciPy implementation of method.md
+//! (`tests/golden/`, see its README for how the values were made).
+
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
+use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::landscape::{Axis, AxisScale, Grid};
+use dmpscope_core::{Model, PrepSettings, RawDemo, TimeSource, extract, landscape, prepare};
+use serde_json::Value;
+
+fn golden(name: &str) -> Value {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../tests/golden")
+        .join(name);
+    let text = std::fs::read_to_string(&path).expect("golden file");
+    serde_json::from_str(&text).expect("golden json")
+}
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().expect("number")
+}
+
+fn fs(v: &Value) -> Vec<f64> {
+    v.as_array().expect("array").iter().map(f).collect()
+}
+
+/// Relative closeness with a floor for values near zero.
+#[track_caller]
+fn close(actual: f64, expected: f64, rel: f64, what: &str) {
+    let scale = expected.abs().max(1e-9);
+    assert!(
+        (actual - expected).abs() <= rel * scale,
+        "{what}: {actual} vs golden {expected} (rel {:.3e})",
+        (actual - expected).abs() / scale
+    );
+}
+
+fn raw_demos() -> Vec<RawDemo> {
+    let input = golden("input.json");
+    input["demos"]
+        .as_array()
+        .expect("demos")
+        .iter()
+        .map(|d| {
+            let name = d["name"].as_str().expect("name").to_owned();
+            RawDemo {
+                name: name.clone(),
+                file: "input.json".into(),
+                topic: name,
+                stamps_ns: d["stamps_ns"]
+                    .as_array()
+                    .expect("stamps")
+                    .iter()
+                    .map(|v| v.as_i64().expect("int stamp"))
+                    .collect(),
+                positions: d["positions"]
+                    .as_array()
+                    .expect("positions")
+                    .iter()
+                    .map(|p| {
+                        let p = fs(p);
+                        [p[0], p[1], p[2]]
+                    })
+                    .collect(),
+                time_source: TimeSource::HeaderStamp,
+            }
+        })
+        .collect()
+}
+
+fn model() -> Model {
+    let prepared = raw_demos()
+        .iter()
+        .map(|r| prepare(r, &PrepSettings::default()).expect("prepare"))
+        .collect();
+    Model::new(prepared, DmpSettings::default()).expect("model")
+}
+
+const REL: f64 = 1e-9;
+
+#[test]
+fn preprocessing_matches_reference() {
+    let expected = golden("expected.json");
+    let m = model();
+    for (demo, exp) in m
+        .demos()
+        .iter()
+        .zip(expected["prepared"].as_array().expect("list"))
+    {
+        assert_eq!(
+            demo.n0,
+            exp["n0"].as_u64().expect("n0") as usize,
+            "{}",
+            demo.name
+        );
+        close(demo.duration_s, f(&exp["T"]), 1e-14, "T");
+        close(demo.median_interval_s, f(&exp["h"]), 1e-12, "h");
+        for ax in 0..3 {
+            close(demo.goal[ax], f(&exp["g"][ax]), REL, "g");
+            close(demo.p0[ax], f(&exp["p0"][ax]), 1e-14, "p0");
+        }
+        let idx: Vec<usize> = exp["idx"]
+            .as_array()
+            .expect("idx")
+            .iter()
+            .map(|v| v.as_u64().expect("index") as usize)
+            .collect();
+        for (field, ours) in [
+            ("y_raw", &demo.y_raw),
+            ("y", &demo.y),
+            ("yd", &demo.yd),
+            ("ydd", &demo.ydd),
+        ] {
+            // Scale by the field's peak: values that pass through zero are
+            // compared relative to the signal, not to themselves.
+            let peak = ours
+                .iter()
+                .flat_map(|p| p.iter().map(|v| v.abs()))
+                .fold(0.0, f64::max);
+            for (slot, &k) in idx.iter().enumerate() {
+                for ax in 0..3 {
+                    let golden = f(&exp[field][slot][ax]);
+                    let diff = (ours[k][ax] - golden).abs();
+                    assert!(
+                        diff <= REL * peak,
+                        "{} {field}[{k}][{ax}]: {} vs {golden}",
+                        demo.name,
+                        ours[k][ax]
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn points_match_reference() {
+    let expected = golden("expected.json");
+    let m = model();
+    for p in expected["points"].as_array().expect("points") {
+        let (dm, km) = (f(&p["dm"]), f(&p["km"]));
+        let e = m.evaluate(dm, km);
+        let at = format!("({dm}, {km})");
+        close(e.zeta, f(&p["zeta"]), 1e-14, &format!("zeta {at}"));
+        for (i, (d, a)) in e.d.iter().zip(&e.a_peak).enumerate() {
+            close(*d, f(&p["d"][i]), REL, &format!("d[{i}] {at}"));
+            close(*a, f(&p["a_peak"][i]), REL, &format!("a_peak[{i}] {at}"));
+        }
+        close(e.s, f(&p["s"]), REL, &format!("S {at}"));
+        close(e.j(20.0), f(&p["j"]), REL, &format!("J {at}"));
+        let w = m.projections(0).weights_at(0, dm, km);
+        let first = fs(&p["weights_demo0_x_first5"]);
+        let last = fs(&p["weights_demo0_x_last5"]);
+        let wmax = w.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        for (ours, golden) in w
+            .iter()
+            .take(5)
+            .zip(&first)
+            .chain(w[w.len() - 5..].iter().zip(&last))
+        {
+            assert!(
+                (ours - golden).abs() <= REL * wmax,
+                "weights {at}: {ours} vs {golden}"
+            );
+        }
+        let forcing = m.forcing(0, dm, km);
+        let fmax = forcing.iter().fold(0.0f64, |a, v| a.max(v[0].abs()));
+        let idx = p["idx"].as_array().expect("idx");
+        for (slot, k) in idx.iter().enumerate() {
+            let k = k.as_u64().expect("index") as usize;
+            let golden = f(&p["f_fit_demo0_x"][slot]);
+            assert!(
+                (forcing[k][0] - golden).abs() <= REL * fmax,
+                "f_fit[{k}] {at}"
+            );
+        }
+    }
+}
+
+#[test]
+fn landscape_and_optimum_match_reference() {
+    let expected = golden("expected.json");
+    let ls = &expected["landscape"];
+    let axis = |v: &Value| {
+        let values = fs(v);
+        Axis {
+            lo: values[0],
+            hi: values[values.len() - 1],
+            n: values.len(),
+            scale: AxisScale::Log,
+        }
+    };
+    let grid = Grid {
+        dm: axis(&ls["dm_axis"]),
+        km: axis(&ls["km_axis"]),
+    };
+    let m = Arc::new(model());
+    let land = landscape::compute(m.clone(), grid, &AtomicBool::new(false), &mut |_, _| {})
+        .expect("landscape");
+    for (ours, golden) in land.dm.iter().zip(fs(&ls["dm_axis"])) {
+        close(*ours, golden, 1e-14, "dm axis");
+    }
+    let j = land.j(20.0);
+    for i in 0..grid.dm.n {
+        for jj in 0..grid.km.n {
+            let idx = land.index(i, jj);
+            let at = format!("[{i}][{jj}]");
+            close(
+                land.d_sum[idx],
+                f(&ls["d_sum"][i][jj]),
+                REL,
+                &format!("d_sum {at}"),
+            );
+            close(land.s[idx], f(&ls["s"][i][jj]), REL, &format!("S {at}"));
+            close(j[idx], f(&ls["j"][i][jj]), REL, &format!("J {at}"));
+        }
+    }
+    let gm = &ls["grid_min"];
+    let (i, jj, _) = land.argmin(20.0).expect("argmin");
+    assert_eq!(
+        (i as u64, jj as u64),
+        (
+            gm["i_dm"].as_u64().expect("i"),
+            gm["i_km"].as_u64().expect("j")
+        )
+    );
+
+    let opt = &expected["optimum"];
+    let x = extract(&m, &land, 20.0).expect("extract");
+    // J is flat at the minimum: compare J tightly, the location to 1e-5.
+    close(x.j, f(&opt["j"]), 1e-9, "J at optimum");
+    close(x.eval.dm, f(&opt["dm"]), 1e-5, "D/M at optimum");
+    close(x.eval.km, f(&opt["km"]), 1e-5, "K/M at optimum");
+    assert_eq!(x.on_edge(), opt["on_edge"].as_bool().expect("bool"));
+    assert!(x.converged);
+}
+
+#[test]
+fn single_demo_has_zero_similarity() {
+    let expected = golden("expected.json");
+    let single = &expected["single_demo"];
+    let raw = &raw_demos()[0];
+    let prepared = prepare(raw, &PrepSettings::default()).expect("prepare");
+    let m = Model::new(vec![prepared], DmpSettings::default()).expect("model");
+    let e = m.evaluate(f(&single["dm"]), f(&single["km"]));
+    assert_eq!(e.s, 0.0);
+    assert_eq!(f(&single["s"]), 0.0);
+    let d = single["d"]
+        .as_array()
+        .map_or_else(|| f(&single["d"]), |a| f(&a[0]));
+    close(e.d[0], d, REL, "single demo d");
+}
