@@ -1,0 +1,97 @@
+//! `dmpscope bench`: medians of the two speeds that matter, the full
+//! landscape and one operating point (what a drag on the map costs).
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::landscape::{Axis, Grid};
+use dmpscope_core::{PrepSettings, landscape};
+
+use super::inputs::load_model_with;
+
+/// Arguments of `bench`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Recordings to measure on.
+    #[arg(value_name = "FILES", default_value = "assets/reach10.mcap")]
+    files: Vec<PathBuf>,
+    /// Points per axis of the landscape.
+    #[arg(long, default_value_t = 128)]
+    grid: usize,
+    /// Landscape repetitions.
+    #[arg(long, default_value_t = 7)]
+    repeat: usize,
+    /// Operating-point repetitions.
+    #[arg(long, default_value_t = 500)]
+    points: usize,
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let m = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        (v[m - 1] + v[m]) / 2.0
+    }
+}
+
+/// Times the landscape and the operating point; prints medians in ms.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let t0 = Instant::now();
+    let (_, model) = load_model_with(&args.files, &PrepSettings::default(), DmpSettings::default())?;
+    let load_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let axis = Axis {
+        n: args.grid,
+        ..Axis::paper()
+    };
+    let grid = Grid { dm: axis, km: axis };
+    let cancel = std::sync::atomic::AtomicBool::new(false);
+    let mut land_ms = Vec::new();
+    for _ in 0..args.repeat.max(1) {
+        let t = Instant::now();
+        let land = landscape::compute(model.clone(), grid, &cancel, &mut |_, _| {})?;
+        land_ms.push(t.elapsed().as_secs_f64() * 1e3);
+        std::hint::black_box(land);
+    }
+    // Operating points along a path across the default box, as a drag would visit.
+    let mut op_ms = Vec::new();
+    let mut rollout_ms = Vec::new();
+    let n = args.points.max(1);
+    for i in 0..n {
+        let u = i as f64 / n as f64;
+        let (dm, km) = (10f64.powf(-1.0 + 4.0 * u), 10f64.powf(3.0 - 4.0 * u));
+        let t = Instant::now();
+        let eval = model.evaluate(dm, km);
+        op_ms.push(t.elapsed().as_secs_f64() * 1e3);
+        let t = Instant::now();
+        for demo in 0..model.demos().len() {
+            std::hint::black_box(model.rollout(demo, dm, km));
+        }
+        rollout_ms.push(t.elapsed().as_secs_f64() * 1e3);
+        std::hint::black_box(eval);
+    }
+    let threads = std::thread::available_parallelism().map_or(1, usize::from);
+    println!(
+        "demos: {}, grid: {1}x{1}, threads: {threads}",
+        model.demos().len(),
+        args.grid
+    );
+    println!("load + prepare + fit:                 {load_ms:8.2} ms");
+    let lm = median(land_ms);
+    println!(
+        "landscape {0}x{0} (median of {1}):      {lm:8.2} ms   (goal 250 ms: {2:.2}x)",
+        args.grid,
+        args.repeat.max(1),
+        lm / 250.0
+    );
+    let om = median(op_ms);
+    let rm = median(rollout_ms);
+    println!(
+        "operating point: d, a_peak, S (median): {om:8.3} ms   (goal 0.5 ms: {:.2}x)",
+        om / 0.5
+    );
+    println!("operating point: full paths (median):  {rm:8.3} ms");
+    Ok(())
+}

@@ -1,0 +1,63 @@
+//! `dmpscope gen-sample`: writes the bundled synthetic recording
+//! (`assets/reach10.mcap`), deterministic from a seed.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use dmpscope_core::io::write::{TopicSamples, write_pose_stamped};
+use dmpscope_core::synth::reach_demos;
+
+/// Arguments of `gen-sample`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Where to write the MCAP file.
+    #[arg(long, short, default_value = "assets/reach10.mcap")]
+    out: PathBuf,
+    /// Random seed.
+    #[arg(long, default_value_t = 42)]
+    seed: u64,
+    /// Number of demonstrations.
+    #[arg(long, default_value_t = 10)]
+    demos: usize,
+    /// Write uncompressed chunks instead of zstd.
+    #[arg(long)]
+    uncompressed: bool,
+}
+
+/// The start of the first demo's recording (2025-11-22T10:00:00Z).
+const EPOCH_NS: i64 = 1_763_805_600_000_000_000;
+
+/// Generates the demos and writes them on `/demo_01`, `/demo_02`, ...
+pub fn run(args: Args) -> anyhow::Result<()> {
+    if args.demos == 0 || args.demos > 99 {
+        anyhow::bail!("--demos must be 1 to 99, got {}", args.demos);
+    }
+    let demos = reach_demos(args.seed, args.demos, EPOCH_NS);
+    let topics: Vec<String> = (1..=demos.len()).map(|i| format!("/demo_{i:02}")).collect();
+    let samples: Vec<TopicSamples<'_>> = demos
+        .iter()
+        .zip(&topics)
+        .map(|(d, t)| TopicSamples {
+            topic: t,
+            frame_id: "world",
+            samples: &d.samples,
+        })
+        .collect();
+    let file = std::fs::File::create(&args.out)
+        .with_context(|| format!("{}: cannot create", args.out.display()))?;
+    write_pose_stamped(std::io::BufWriter::new(file), &samples, !args.uncompressed)
+        .with_context(|| format!("{}: cannot write MCAP", args.out.display()))?;
+    let corrected: Vec<&str> = demos
+        .iter()
+        .zip(&topics)
+        .filter(|(d, _)| d.corrected)
+        .map(|(_, t)| t.as_str())
+        .collect();
+    eprintln!(
+        "wrote {} demos to {} (hesitation and correction in: {})",
+        demos.len(),
+        args.out.display(),
+        if corrected.is_empty() { "none".to_owned() } else { corrected.join(", ") }
+    );
+    Ok(())
+}

@@ -1,0 +1,138 @@
+//! `dmpscope landscape`: sum d, S and J over a gain grid, as JSON.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
+use dmpscope_core::landscape::{self, Axis, AxisScale, Grid, Landscape};
+use dmpscope_core::presets::preset_rows;
+use dmpscope_core::{Extraction, Model, extract};
+use serde_json::json;
+
+use super::inputs::{InputArgs, load_model};
+use super::output::{progress_bar, write_text};
+
+/// The gain grid on the command line.
+#[derive(Debug, clap::Args)]
+pub struct GridArgs {
+    /// Points per axis.
+    #[arg(long, default_value_t = 128)]
+    pub grid: usize,
+    /// D/M range.
+    #[arg(long, num_args = 2, value_names = ["LO", "HI"], default_values_t = [0.1, 1000.0])]
+    pub dm_range: Vec<f64>,
+    /// K/M range.
+    #[arg(long, num_args = 2, value_names = ["LO", "HI"], default_values_t = [0.1, 1000.0])]
+    pub km_range: Vec<f64>,
+    /// Space the axes evenly instead of geometrically.
+    #[arg(long)]
+    pub linear: bool,
+    /// Weight of sum d in J = S + k sum d.
+    #[arg(long, default_value_t = dmpscope_core::DEFAULT_K)]
+    pub k: f64,
+}
+
+impl GridArgs {
+    /// The grid these arguments describe.
+    pub fn grid(&self) -> Grid {
+        let scale = if self.linear {
+            AxisScale::Linear
+        } else {
+            AxisScale::Log
+        };
+        let axis = |r: &[f64]| Axis {
+            lo: r[0],
+            hi: r[1],
+            n: self.grid,
+            scale,
+        };
+        Grid {
+            dm: axis(&self.dm_range),
+            km: axis(&self.km_range),
+        }
+    }
+}
+
+/// Arguments of `landscape`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    input: InputArgs,
+    #[command(flatten)]
+    grid: GridArgs,
+    /// Write the JSON here instead of stdout.
+    #[arg(long, short)]
+    out: Option<PathBuf>,
+}
+
+/// Computes the landscape with a progress bar on stderr.
+pub fn compute(model: &Arc<Model>, grid: Grid) -> anyhow::Result<Landscape> {
+    grid.validate()?;
+    let bar = progress_bar(grid.len() as u64, "landscape");
+    let cancel = AtomicBool::new(false);
+    let result = landscape::compute(model.clone(), grid, &cancel, &mut |done, _| {
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
+    Ok(result?)
+}
+
+/// The landscape and extraction of the inputs.
+pub fn landscape_and_optimum(
+    input: &InputArgs,
+    grid: &GridArgs,
+) -> anyhow::Result<(Vec<dmpscope_core::RawDemo>, Arc<Model>, Landscape, Extraction)> {
+    if !grid.k.is_finite() || grid.k < 0.0 {
+        anyhow::bail!("--k must be finite and >= 0, got {}", grid.k);
+    }
+    let (raw, model) = load_model(input)?;
+    let land = compute(&model, grid.grid())?;
+    let optimum = extract(&model, &land, grid.k)?;
+    if optimum.on_edge() {
+        eprintln!(
+            "warning: the optimum lies on the edge of the gain box ({}): widen the range to see whether J keeps falling",
+            optimum.edges.describe()
+        );
+    }
+    Ok((raw, model, land, optimum))
+}
+
+/// Writes the landscape JSON (keys `dm`, `km`, `d_sum`, `s`, `j`, `optimum`,
+/// `presets`, `demos`, `k`).
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let (raw, model, land, optimum) = landscape_and_optimum(&args.input, &args.grid)?;
+    let k = args.grid.k;
+    let presets: Vec<_> = preset_rows(&model, k)
+        .into_iter()
+        .map(|r| {
+            json!({
+                "name": r.name, "dm": r.dm, "km": r.km, "zeta": r.zeta,
+                "d_mean": r.d_mean, "a_peak": r.a_peak,
+                "d_sum": r.d_sum, "s": r.s, "j": r.j,
+            })
+        })
+        .collect();
+    let demos: Vec<_> = raw
+        .iter()
+        .zip(model.demos())
+        .map(|(r, p)| json!({"name": r.name, "n_samples": r.stamps_ns.len(), "duration_s": p.duration_s}))
+        .collect();
+    let e = &optimum.eval;
+    let doc = json!({
+        "dm": land.dm,
+        "km": land.km,
+        "d_sum": land.rows(&land.d_sum),
+        "s": land.rows(&land.s),
+        "j": land.rows(&land.j(k)),
+        "optimum": {
+            "dm": e.dm, "km": e.km, "zeta": e.zeta, "j": optimum.j,
+            "s": e.s, "d_sum": e.d_sum, "on_edge": optimum.on_edge(),
+        },
+        "presets": presets,
+        "demos": demos,
+        "k": k,
+    });
+    let mut text = serde_json::to_string(&doc)?;
+    text.push('\n');
+    write_text(args.out.as_deref(), &text)
+}

@@ -1,0 +1,56 @@
+//! The subcommands, one file each, and what they share: loading inputs
+//! ([`inputs`]) and writing outputs ([`output`]).
+
+mod bench;
+mod extract;
+mod gen_sample;
+mod info;
+mod inputs;
+mod landscape;
+mod output;
+mod regen;
+mod table;
+
+use clap::{CommandFactory, Parser, Subcommand};
+
+/// Turn recordings of human hand motion into DMP gains.
+#[derive(Debug, Parser)]
+#[command(name = "dmpscope", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do; without one, print this help.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// List the demonstrations found in recordings.
+    Info(info::Args),
+    /// Compute sum d, S and J over a grid of gains and write them as JSON.
+    Landscape(landscape::Args),
+    /// Extract the gains minimising J and compare them with the paper's.
+    Extract(extract::Args),
+    /// Regenerate every demo at one gain pair.
+    Regen(regen::Args),
+    /// Measure the landscape and operating-point speed.
+    Bench(bench::Args),
+    /// Write the bundled synthetic sample recording.
+    GenSample(gen_sample::Args),
+}
+
+/// Runs the parsed command line.
+pub fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        None => {
+            Cli::command().print_help()?;
+            Ok(())
+        }
+        Some(Command::Info(a)) => info::run(a),
+        Some(Command::Landscape(a)) => landscape::run(a),
+        Some(Command::Extract(a)) => extract::run(a),
+        Some(Command::Regen(a)) => regen::run(a),
+        Some(Command::Bench(a)) => bench::run(a),
+        Some(Command::GenSample(a)) => gen_sample::run(a),
+    }
+}

@@ -1,0 +1,77 @@
+//! `dmpscope regen`: every demo regenerated at one gain pair.
+
+use std::fmt::Write;
+use std::path::PathBuf;
+
+use super::inputs::{InputArgs, load_model};
+use super::output::write_text;
+
+/// Arguments of `regen`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    input: InputArgs,
+    /// D/M.
+    #[arg(long)]
+    dm: f64,
+    /// K/M.
+    #[arg(long)]
+    km: f64,
+    /// Write the regenerated paths as CSV here (`-` for stdout, then the
+    /// summary goes to stderr).
+    #[arg(long, short)]
+    out: Option<PathBuf>,
+}
+
+/// Prints per demo d_mean and a_peak, and writes the paths.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    for (name, v) in [("--dm", args.dm), ("--km", args.km)] {
+        if !(v.is_finite() && v > 0.0) {
+            anyhow::bail!("{name} must be a positive number, got {v}");
+        }
+    }
+    let (_, model) = load_model(&args.input)?;
+    let eval = model.evaluate(args.dm, args.km);
+    let mut summary = String::new();
+    let _ = writeln!(
+        summary,
+        "D/M = {}, K/M = {}, zeta = {:.4}, S = {:.6}, sum d = {:.6} m",
+        args.dm, args.km, eval.zeta, eval.s, eval.d_sum
+    );
+    let w = model.demos().iter().map(|d| d.name.len()).max().unwrap_or(4).max(4);
+    let _ = writeln!(summary, "{:<w$}  {:>11}  {:>14}", "demo", "d_mean [mm]", "a_peak [m/s^2]");
+    for (demo, (d, a)) in model.demos().iter().zip(eval.d.iter().zip(&eval.a_peak)) {
+        let _ = writeln!(summary, "{:<w$}  {:>11.4}  {:>14.3}", demo.name, d * 1e3, a);
+    }
+    let to_stdout = args.out.as_deref().is_some_and(|p| p == std::path::Path::new("-"));
+    if to_stdout {
+        eprint!("{summary}");
+    } else {
+        print!("{summary}");
+    }
+    let Some(out) = args.out else {
+        eprintln!("note: pass --out F.csv to write the regenerated paths");
+        return Ok(());
+    };
+    let mut csv = String::from(
+        "demo,s,t_s,x,y,z,demo_x,demo_y,demo_z,vx,vy,vz,ax,ay,az\n",
+    );
+    for (i, demo) in model.demos().iter().enumerate() {
+        let path = model.rollout(i, args.dm, args.km);
+        let n = demo.len();
+        for k in 0..n {
+            let s = k as f64 / (n - 1) as f64;
+            let p: [f64; 3] = std::array::from_fn(|ax| path.y[k][ax] + demo.p0[ax]);
+            let q: [f64; 3] = std::array::from_fn(|ax| demo.y_raw[k][ax] + demo.p0[ax]);
+            let (v, a) = (path.v[k], path.a[k]);
+            let _ = writeln!(
+                csv,
+                "{},{s},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                demo.name,
+                s * demo.duration_s,
+                p[0], p[1], p[2], q[0], q[1], q[2], v[0], v[1], v[2], a[0], a[1], a[2]
+            );
+        }
+    }
+    write_text(Some(&out), &csv)
+}
