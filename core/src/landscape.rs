@@ -12,7 +12,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::model::{LANES, Model};
-use crate::similarity::SimilarityScratch;
 
 /// How an axis spaces its values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -269,7 +268,6 @@ pub struct LandscapeJob {
     order: Vec<(u32, u32)>,
     next: usize,
     landscape: Landscape,
-    scratch: SimilarityScratch,
 }
 
 impl LandscapeJob {
@@ -281,7 +279,6 @@ impl LandscapeJob {
             order: fill_order(&grid, order),
             next: 0,
             landscape: Landscape::empty(grid),
-            scratch: SimilarityScratch::default(),
         })
     }
 
@@ -310,7 +307,7 @@ impl LandscapeJob {
     pub fn step(&mut self, max_points: usize) -> bool {
         let end = (self.next + max_points.max(1)).min(self.order.len());
         let batch = &self.order[self.next..end];
-        let values = eval_points(&self.model, &self.landscape, batch, &mut self.scratch);
+        let values = eval_points(&self.model, &self.landscape, batch);
         store(&mut self.landscape, batch, &values);
         self.next = end;
         self.is_done()
@@ -331,7 +328,7 @@ impl LandscapeJob {
             }
             let end = (self.next + TILE).min(self.order.len());
             let batch = &self.order[self.next..end];
-            let values = eval_tile(&self.model, &self.landscape, batch, &mut self.scratch);
+            let values = eval_tile(&self.model, &self.landscape, batch);
             store(&mut self.landscape, batch, &values);
             self.next = end;
             progress(self.next, self.order.len());
@@ -342,51 +339,44 @@ impl LandscapeJob {
 
 /// `(sum d, S)` of a tile of points, spread over all cores.
 #[cfg(feature = "parallel")]
-fn eval_tile(
-    model: &Model,
-    landscape: &Landscape,
-    batch: &[(u32, u32)],
-    _scratch: &mut SimilarityScratch,
-) -> Vec<(f64, f64)> {
+fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<(f64, f64)> {
     use rayon::prelude::*;
-    batch
-        .par_chunks(LANES * 4)
-        .map_init(SimilarityScratch::default, |scratch, chunk| {
-            eval_points(model, landscape, chunk, scratch)
-        })
-        .flatten_iter()
+    row_runs(batch)
+        .par_iter()
+        .flat_map_iter(|run| eval_points(model, landscape, run))
         .collect()
 }
 
 /// `(sum d, S)` of a tile of points on this thread.
 #[cfg(not(feature = "parallel"))]
-fn eval_tile(
-    model: &Model,
-    landscape: &Landscape,
-    batch: &[(u32, u32)],
-    scratch: &mut SimilarityScratch,
-) -> Vec<(f64, f64)> {
-    eval_points(model, landscape, batch, scratch)
+fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<(f64, f64)> {
+    eval_points(model, landscape, batch)
 }
 
-/// `(sum d, S)` of each point, lane by lane.
-fn eval_points(
-    model: &Model,
-    landscape: &Landscape,
-    points: &[(u32, u32)],
-    scratch: &mut SimilarityScratch,
-) -> Vec<(f64, f64)> {
+/// Splits points into runs of at most [`LANES`] that share a row (D/M).
+fn row_runs(points: &[(u32, u32)]) -> Vec<&[(u32, u32)]> {
+    let mut runs = Vec::new();
+    let mut start = 0;
+    for end in 1..=points.len() {
+        if end == points.len() || end - start == LANES || points[end].0 != points[start].0 {
+            runs.push(&points[start..end]);
+            start = end;
+        }
+    }
+    runs
+}
+
+/// `(sum d, S)` of each point, in lanes of points that share a row.
+fn eval_points(model: &Model, landscape: &Landscape, points: &[(u32, u32)]) -> Vec<(f64, f64)> {
     let mut out = Vec::with_capacity(points.len());
-    for chunk in points.chunks(LANES) {
-        // A short last chunk repeats its first point in the spare lanes.
-        let gains = |l: usize| {
-            let (i, j) = chunk[if l < chunk.len() { l } else { 0 }];
-            (landscape.dm[i as usize], landscape.km[j as usize])
-        };
-        let dm = std::array::from_fn(|l| gains(l).0);
-        let km = std::array::from_fn(|l| gains(l).1);
-        let values = model.evaluate_lanes(dm, km, scratch);
-        out.extend_from_slice(&values[..chunk.len()]);
+    for run in row_runs(points) {
+        let dm = landscape.dm[run[0].0 as usize];
+        // A short run repeats its first point in the spare lanes.
+        let km: [f64; LANES] = std::array::from_fn(|l| {
+            landscape.km[run[if l < run.len() { l } else { 0 }].1 as usize]
+        });
+        let values = model.evaluate_lanes(dm, km);
+        out.extend_from_slice(&values[..run.len()]);
     }
     out
 }

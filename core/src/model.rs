@@ -4,8 +4,8 @@
 //! All the work that does not depend on the gains happens once, in
 //! [`Model::new`]: the basis, the three LWR projections per demo and the
 //! centred parts of `S`. A gain pair then costs one integration per demo and
-//! one pass of `S`. The integration kernel is written over `L` gain pairs at
-//! once (lanes), which the compiler vectorises; every lane does exactly the
+//! one pass of `S`. The kernels are written over `L` gain pairs that share
+//! D/M (lanes), which the compiler vectorises; every lane does exactly the
 //! same arithmetic, so one pair gives the same bits alone or in a batch.
 
 use serde::Serialize;
@@ -13,10 +13,10 @@ use serde::Serialize;
 use crate::dmp::{Basis, DmpSettings, Projections};
 use crate::error::{Error, Result};
 use crate::prepare::PreparedDemo;
-use crate::similarity::{Similarity, SimilarityScratch, trapezoid};
+use crate::similarity::{Similarity, trapezoid};
 
-/// Lanes of the batched integration kernel used by landscapes.
-pub const LANES: usize = 4;
+/// Lanes of the batched kernels used by landscapes (gain pairs sharing D/M).
+pub const LANES: usize = 16;
 
 /// Everything gain-independent about a set of prepared demos.
 #[derive(Clone, Debug)]
@@ -26,6 +26,49 @@ pub struct Model {
     basis: Basis,
     projections: Vec<Projections>,
     similarity: Similarity,
+    kernels: Vec<DemoKernel>,
+}
+
+/// One demo laid out for the integration kernel, in scaled variables
+/// `z = y - g` and `u = v dt`, so that a step is
+/// `u += (F0 + D F1 + K F2) dt^2 - K dt^2 z - D dt u; z += u`.
+#[derive(Clone, Debug)]
+struct DemoKernel {
+    /// Per grid point and axis: `[F0 dt^2, F1 dt^2, F2 dt^2, y_raw - g]`.
+    steps: Vec<[[f64; 4]; 3]>,
+    /// `y_raw(0) - g`.
+    z0: [f64; 3],
+    /// `y'(0) dt`.
+    u0: [f64; 3],
+}
+
+impl DemoKernel {
+    fn new(demo: &PreparedDemo, proj: &Projections) -> Self {
+        let n = demo.len();
+        let dt = 1.0 / (n - 1) as f64;
+        let dt2 = dt * dt;
+        let g = demo.goal;
+        let steps = proj
+            .f
+            .iter()
+            .zip(&demo.y_raw)
+            .map(|(fk, yr)| {
+                std::array::from_fn(|ax| {
+                    [
+                        fk[ax][0] * dt2,
+                        fk[ax][1] * dt2,
+                        fk[ax][2] * dt2,
+                        yr[ax] - g[ax],
+                    ]
+                })
+            })
+            .collect();
+        Self {
+            steps,
+            z0: std::array::from_fn(|ax| demo.y_raw[0][ax] - g[ax]),
+            u0: std::array::from_fn(|ax| demo.yd[0][ax] * dt),
+        }
+    }
 }
 
 /// The evaluation of one gain pair over all demos.
@@ -86,14 +129,21 @@ impl Model {
             )));
         }
         let basis = Basis::new(&settings, n)?;
-        let projections = demos.iter().map(|d| Projections::new(&basis, d)).collect();
+        let projections: Vec<Projections> =
+            demos.iter().map(|d| Projections::new(&basis, d)).collect();
         let similarity = Similarity::new(&demos);
+        let kernels = demos
+            .iter()
+            .zip(&projections)
+            .map(|(d, p)| DemoKernel::new(d, p))
+            .collect();
         Ok(Self {
             demos,
             settings,
             basis,
             projections,
             similarity,
+            kernels,
         })
     }
 
@@ -131,14 +181,11 @@ impl Model {
         let mut d = Vec::with_capacity(self.demos.len());
         let mut a_peak = Vec::with_capacity(self.demos.len());
         for i in 0..self.demos.len() {
-            let (di, ai) = self.integrate::<1>(i, [dm], [km]);
+            let (di, ai) = self.integrate::<1, true>(i, dm, [km]);
             d.push(di[0]);
             a_peak.push(ai[0]);
         }
         let d_sum = d.iter().sum();
-        let s = self
-            .similarity
-            .evaluate(dm, km, &mut SimilarityScratch::default());
         PointEval {
             dm,
             km,
@@ -146,105 +193,99 @@ impl Model {
             d,
             a_peak,
             d_sum,
-            s,
+            s: self.similarity.evaluate(dm, km),
         }
     }
 
-    /// `(sum d, S)` at [`LANES`] gain pairs; the landscape's unit of work.
-    /// Each lane's numbers equal [`Model::evaluate`]'s to the bit.
-    pub fn evaluate_lanes(
-        &self,
-        dm: [f64; LANES],
-        km: [f64; LANES],
-        scratch: &mut SimilarityScratch,
-    ) -> [(f64, f64); LANES] {
-        let mut d_sum = [0.0; LANES];
+    /// `(sum d, S)` at the gain pairs `(dm, km[l])`; the landscape's unit of
+    /// work. Each lane's numbers equal [`Model::evaluate`]'s to the bit.
+    pub fn evaluate_lanes<const L: usize>(&self, dm: f64, km: [f64; L]) -> [(f64, f64); L] {
+        let mut d_sum = [0.0; L];
         for i in 0..self.demos.len() {
-            let (d, _) = self.integrate::<LANES>(i, dm, km);
-            for l in 0..LANES {
+            let (d, _) = self.integrate::<L, false>(i, dm, km);
+            for l in 0..L {
                 d_sum[l] += d[l];
             }
         }
-        std::array::from_fn(|l| (d_sum[l], self.similarity.evaluate(dm[l], km[l], scratch)))
+        let s = self.similarity.evaluate_lanes(dm, km);
+        std::array::from_fn(|l| (d_sum[l], s[l]))
     }
 
-    /// Integrates demo `i` at `L` gain pairs (method.md section 4) and returns
-    /// `d` and `a_peak` per lane.
-    fn integrate<const L: usize>(
+    /// Integrates demo `i` at `(dm, km[l])` for each lane (method.md section
+    /// 4, in the kernel's scaled variables) and returns `d` and, when `PEAK`,
+    /// `a_peak` per lane.
+    fn integrate<const L: usize, const PEAK: bool>(
         &self,
         i: usize,
-        dm: [f64; L],
+        dm: f64,
         km: [f64; L],
     ) -> ([f64; L], [f64; L]) {
-        let demo = &self.demos[i];
-        let proj = &self.projections[i].f;
-        let n = demo.len();
+        let kernel = &self.kernels[i];
+        let n = kernel.steps.len();
         let dt = 1.0 / (n - 1) as f64;
-        let g = demo.goal;
-        let mut y: [[f64; L]; 3] = std::array::from_fn(|ax| [demo.y_raw[0][ax]; L]);
-        let mut v: [[f64; L]; 3] = std::array::from_fn(|ax| [demo.yd[0][ax]; L]);
+        let dt2 = dt * dt;
+        let ddt = dm * dt;
+        let kdt2 = km.map(|k| k * dt2);
+        let mut z: [[f64; L]; 3] = std::array::from_fn(|ax| [kernel.z0[ax]; L]);
+        let mut u: [[f64; L]; 3] = std::array::from_fn(|ax| [kernel.u0[ax]; L]);
         let mut err_sum = [0.0; L];
-        let mut a2_max = [0.0f64; L];
-        for k in 0..n {
-            let fk = &proj[k];
-            let yr = demo.y_raw[k];
-            let mut acc = [[0.0; L]; 3];
+        let mut du2_max = [0.0f64; L];
+        for (k, step) in kernel.steps.iter().enumerate() {
             let mut e2 = [0.0; L];
-            let mut a2 = [0.0; L];
+            let mut du2 = [0.0; L];
             for ax in 0..3 {
+                let [f0, f1, f2, target] = step[ax];
+                let fd = f0 + dm * f1;
                 for l in 0..L {
-                    let f = fk[ax][0] + dm[l] * fk[ax][1] + km[l] * fk[ax][2];
-                    let a = -dm[l] * v[ax][l] - km[l] * (y[ax][l] - g[ax]) + f;
-                    acc[ax][l] = a;
-                    let e = y[ax][l] - yr[ax];
+                    let e = z[ax][l] - target;
                     e2[l] += e * e;
-                    a2[l] += a * a;
+                    // a dt^2 = f dt^2 - K dt^2 (y - g) - D dt (v dt)
+                    let du = fd + km[l] * f2 - kdt2[l] * z[ax][l] - ddt * u[ax][l];
+                    if PEAK {
+                        du2[l] += du * du;
+                    }
+                    u[ax][l] += du;
+                    z[ax][l] += u[ax][l];
                 }
             }
             let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
             for l in 0..L {
                 err_sum[l] += w * e2[l].sqrt();
-                a2_max[l] = a2_max[l].max(a2[l]);
-            }
-            if k + 1 < n {
-                for ax in 0..3 {
-                    for l in 0..L {
-                        v[ax][l] += acc[ax][l] * dt;
-                        y[ax][l] += v[ax][l] * dt;
-                    }
+                if PEAK {
+                    du2_max[l] = du2_max[l].max(du2[l]);
                 }
             }
         }
-        (err_sum.map(|e| e * dt), a2_max.map(f64::sqrt))
+        (err_sum.map(|e| e * dt), du2_max.map(|m| m.sqrt() / dt2))
     }
 
     /// The full regenerated path of demo `i` at `(dm, km)`, for plots and
-    /// export; the same recurrence as [`Model::evaluate`].
+    /// export: the same recurrence and arithmetic as [`Model::evaluate`].
     pub fn rollout(&self, i: usize, dm: f64, km: f64) -> Rollout {
-        let demo = &self.demos[i];
-        let proj = &self.projections[i].f;
-        let n = demo.len();
+        let kernel = &self.kernels[i];
+        let g = self.demos[i].goal;
+        let n = kernel.steps.len();
         let dt = 1.0 / (n - 1) as f64;
-        let g = demo.goal;
-        let mut y = demo.y_raw[0];
-        let mut v = demo.yd[0];
+        let dt2 = dt * dt;
+        let (ddt, kdt2) = (dm * dt, km * dt2);
+        let (mut z, mut u) = (kernel.z0, kernel.u0);
         let mut out = Rollout {
             y: Vec::with_capacity(n),
             v: Vec::with_capacity(n),
             a: Vec::with_capacity(n),
         };
-        for fk in proj.iter().take(n) {
-            let a: [f64; 3] = std::array::from_fn(|ax| {
-                let f = fk[ax][0] + dm * fk[ax][1] + km * fk[ax][2];
-                -dm * v[ax] - km * (y[ax] - g[ax]) + f
-            });
-            out.y.push(y);
-            out.v.push(v);
-            out.a.push(a);
+        for step in &kernel.steps {
+            let mut a = [0.0; 3];
+            out.y.push(std::array::from_fn(|ax| z[ax] + g[ax]));
+            out.v.push(u.map(|u| u / dt));
             for ax in 0..3 {
-                v[ax] += a[ax] * dt;
-                y[ax] += v[ax] * dt;
+                let [f0, f1, f2, _] = step[ax];
+                let du = f0 + dm * f1 + km * f2 - kdt2 * z[ax] - ddt * u[ax];
+                a[ax] = du / dt2;
+                u[ax] += du;
+                z[ax] += u[ax];
             }
+            out.a.push(a);
         }
         out
     }

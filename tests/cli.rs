@@ -1,0 +1,242 @@
+//! End-to-end tests at the process boundary: the `dmpscope` binary on the
+//! bundled sample, its outputs parsed as a user's script would.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn sample() -> PathBuf {
+    repo().join("assets/reach10.mcap")
+}
+
+fn dmpscope(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_dmpscope"))
+        .args(args)
+        .current_dir(repo())
+        .output()
+        .expect("run dmpscope")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("dmpscope-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir.join(name)
+}
+
+fn landscape_json(extra: &[&str]) -> Value {
+    let out = tmp(&format!("landscape-{}.json", extra.join("_").replace(['/', '.'], "-")));
+    let sample = sample();
+    let mut args = vec![
+        "landscape",
+        sample.to_str().expect("path"),
+        "--grid",
+        "12",
+        "--out",
+        out.to_str().expect("path"),
+    ];
+    args.extend_from_slice(extra);
+    let result = dmpscope(&args);
+    assert!(result.status.success(), "stderr: {}", text(&result.stderr));
+    serde_json::from_str(&std::fs::read_to_string(&out).expect("json written")).expect("valid json")
+}
+
+#[test]
+fn info_lists_the_ten_sample_demos() {
+    let out = dmpscope(&["info", sample().to_str().expect("path")]);
+    assert!(out.status.success());
+    let stdout = text(&out.stdout);
+    for i in 1..=10 {
+        assert!(stdout.contains(&format!("reach10.mcap:/demo_{i:02}")), "{stdout}");
+    }
+    let json = dmpscope(&["info", "--json", "assets"]);
+    let list: Value = serde_json::from_slice(&json.stdout).expect("info --json");
+    let demos = list.as_array().expect("array");
+    assert_eq!(demos.len(), 10);
+    for d in demos {
+        let rate = d["median_rate_hz"].as_f64().expect("rate");
+        let duration = d["duration_s"].as_f64().expect("duration");
+        assert!((85.0..95.0).contains(&rate), "{rate}");
+        assert!((1.0..=1.6).contains(&duration), "{duration}");
+    }
+}
+
+#[test]
+fn landscape_json_has_exactly_the_documented_shape() {
+    let doc = landscape_json(&[]);
+    let keys: Vec<&str> = doc.as_object().expect("object").keys().map(String::as_str).collect();
+    let mut sorted = keys.clone();
+    sorted.sort_unstable();
+    assert_eq!(sorted, ["d_sum", "demos", "dm", "j", "k", "km", "optimum", "presets", "s"]);
+    let n = 12;
+    assert_eq!(doc["dm"].as_array().expect("dm").len(), n);
+    assert_eq!(doc["km"].as_array().expect("km").len(), n);
+    assert_eq!(doc["dm"][0].as_f64(), Some(0.1));
+    assert_eq!(doc["km"][n - 1].as_f64(), Some(1000.0));
+    let k = doc["k"].as_f64().expect("k");
+    assert_eq!(k, 20.0);
+    let mut grid_min = f64::INFINITY;
+    for i in 0..n {
+        for j in 0..n {
+            let (d, s, jv) = (
+                doc["d_sum"][i][j].as_f64().expect("d"),
+                doc["s"][i][j].as_f64().expect("s"),
+                doc["j"][i][j].as_f64().expect("j"),
+            );
+            assert!(d > 0.0 && s >= 0.0 && d.is_finite() && s.is_finite());
+            assert_eq!(jv, s + k * d);
+            grid_min = grid_min.min(jv);
+        }
+    }
+    let opt = &doc["optimum"];
+    let mut opt_keys: Vec<&str> = opt.as_object().expect("optimum").keys().map(String::as_str).collect();
+    opt_keys.sort_unstable();
+    assert_eq!(opt_keys, ["d_sum", "dm", "j", "km", "on_edge", "s", "zeta"]);
+    assert!(opt["j"].as_f64().expect("j") <= grid_min);
+    let names: Vec<&str> = doc["presets"]
+        .as_array()
+        .expect("presets")
+        .iter()
+        .map(|p| p["name"].as_str().expect("name"))
+        .collect();
+    assert_eq!(names, ["Ours", "Hrstc1", "Hrstc2", "Hrstc3", "Hrstc4"]);
+    for p in doc["presets"].as_array().expect("presets") {
+        assert_eq!(p["d_mean"].as_array().expect("d_mean").len(), 10);
+        assert_eq!(p["a_peak"].as_array().expect("a_peak").len(), 10);
+    }
+    let demos = doc["demos"].as_array().expect("demos");
+    assert_eq!(demos.len(), 10);
+    assert_eq!(demos[0]["name"], "reach10.mcap:/demo_01");
+}
+
+#[test]
+fn changing_k_recombines_the_same_grids() {
+    let a = landscape_json(&["--k", "20"]);
+    let b = landscape_json(&["--k", "5"]);
+    assert_eq!(a["s"], b["s"]);
+    assert_eq!(a["d_sum"], b["d_sum"]);
+    assert_ne!(a["j"], b["j"]);
+    assert_eq!(b["k"].as_f64(), Some(5.0));
+}
+
+#[test]
+fn a_folder_means_every_mcap_in_it() {
+    let out = dmpscope(&["info", "--json", sample().to_str().expect("path")]);
+    let folder = dmpscope(&["info", "--json", repo().join("assets").to_str().expect("path")]);
+    assert_eq!(out.stdout, folder.stdout);
+}
+
+#[test]
+fn extract_prints_gains_edge_flag_and_table() {
+    let out = dmpscope(&["extract", sample().to_str().expect("path"), "--grid", "16"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    assert!(stdout.starts_with("(M:D:K) = 1 : "), "{stdout}");
+    for needle in ["zeta", "J ", "on edge = ", "Table I: d_mean", "Table I: a_peak", "Extracted", "Hrstc4"] {
+        assert!(stdout.contains(needle), "missing {needle}: {stdout}");
+    }
+}
+
+#[test]
+fn extract_flags_an_optimum_on_the_box_edge() {
+    // K/M capped at 1: on this sample J keeps falling with K/M, so the
+    // optimum must sit on the K/M maximum and the user must be told.
+    let out = dmpscope(&[
+        "extract",
+        sample().to_str().expect("path"),
+        "--grid",
+        "8",
+        "--km-range",
+        "0.1",
+        "1",
+    ]);
+    assert!(out.status.success());
+    assert!(text(&out.stdout).contains("on edge = yes: K/M at its maximum"), "{}", text(&out.stdout));
+    assert!(text(&out.stderr).contains("warning: the optimum lies on the edge"));
+}
+
+#[test]
+fn regen_writes_every_path() {
+    let csv = tmp("regen.csv");
+    let out = dmpscope(&[
+        "regen",
+        sample().to_str().expect("path"),
+        "--dm",
+        "10.73",
+        "--km",
+        "20.71",
+        "--out",
+        csv.to_str().expect("path"),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let summary = text(&out.stdout);
+    assert!(summary.contains("d_mean [mm]") && summary.contains("reach10.mcap:/demo_10"));
+    let body = std::fs::read_to_string(&csv).expect("csv");
+    let lines: Vec<&str> = body.lines().collect();
+    assert_eq!(lines.len(), 1 + 10 * 1001);
+    assert!(lines[0].starts_with("demo,s,t_s,x,y,z"));
+    let first: Vec<&str> = lines[1].split(',').collect();
+    // The path starts where the demo starts.
+    for ax in 0..3 {
+        assert_eq!(first[3 + ax], first[6 + ax]);
+    }
+}
+
+#[test]
+fn the_sample_generator_is_deterministic() {
+    let out = tmp("reach10.mcap");
+    let result = dmpscope(&["gen-sample", "--out", out.to_str().expect("path")]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    let fresh = std::fs::read(&out).expect("written");
+    let bundled = std::fs::read(sample()).expect("bundled");
+    assert!(fresh == bundled, "assets/reach10.mcap differs from `dmpscope gen-sample`");
+}
+
+#[test]
+fn bad_files_get_an_error_naming_them() {
+    let not_mcap = tmp("notes.mcap");
+    std::fs::write(&not_mcap, b"these are not the bytes you are looking for").expect("write");
+    let out = dmpscope(&["info", not_mcap.to_str().expect("path")]);
+    assert!(!out.status.success());
+    let err = text(&out.stderr);
+    assert!(err.contains("notes.mcap") && err.contains("MCAP"), "{err}");
+
+    let bytes = std::fs::read(sample()).expect("sample");
+    let truncated = tmp("truncated.mcap");
+    std::fs::write(&truncated, &bytes[..bytes.len() / 2]).expect("write");
+    let out = dmpscope(&["landscape", truncated.to_str().expect("path"), "--grid", "4"]);
+    assert!(!out.status.success());
+    let err = text(&out.stderr);
+    assert!(err.contains("truncated.mcap") && err.contains("truncated"), "{err}");
+
+    let out = dmpscope(&["info", "/nonexistent/file.mcap"]);
+    assert!(!out.status.success());
+    assert!(text(&out.stderr).contains("/nonexistent/file.mcap"));
+}
+
+#[test]
+fn one_demo_is_told_that_s_needs_two() {
+    // Regenerating from a single demo: S is 0 and a note says why.
+    let one = tmp("one.mcap");
+    let gen_out = dmpscope(&["gen-sample", "--demos", "1", "--out", one.to_str().expect("path")]);
+    assert!(gen_out.status.success());
+    let out = dmpscope(&["regen", one.to_str().expect("path"), "--dm", "25", "--km", "156.25"]);
+    assert!(out.status.success());
+    assert!(text(&out.stderr).contains("S needs two or more"));
+    assert!(text(&out.stdout).contains("S = 0.000000"));
+}
+
+#[test]
+fn no_subcommand_prints_help() {
+    let out = dmpscope(&[]);
+    assert!(out.status.success());
+    assert!(text(&out.stdout).contains("Usage: dmpscope"));
+}
