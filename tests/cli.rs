@@ -33,7 +33,10 @@ fn tmp(name: &str) -> PathBuf {
 }
 
 fn landscape_json(extra: &[&str]) -> Value {
-    let out = tmp(&format!("landscape-{}.json", extra.join("_").replace(['/', '.'], "-")));
+    let out = tmp(&format!(
+        "landscape-{}.json",
+        extra.join("_").replace(['/', '.'], "-")
+    ));
     let sample = sample();
     let mut args = vec![
         "landscape",
@@ -55,7 +58,10 @@ fn info_lists_the_ten_sample_demos() {
     assert!(out.status.success());
     let stdout = text(&out.stdout);
     for i in 1..=10 {
-        assert!(stdout.contains(&format!("reach10.mcap:/demo_{i:02}")), "{stdout}");
+        assert!(
+            stdout.contains(&format!("reach10.mcap:/demo_{i:02}")),
+            "{stdout}"
+        );
     }
     let json = dmpscope(&["info", "--json", "assets"]);
     let list: Value = serde_json::from_slice(&json.stdout).expect("info --json");
@@ -72,10 +78,20 @@ fn info_lists_the_ten_sample_demos() {
 #[test]
 fn landscape_json_has_exactly_the_documented_shape() {
     let doc = landscape_json(&[]);
-    let keys: Vec<&str> = doc.as_object().expect("object").keys().map(String::as_str).collect();
+    let keys: Vec<&str> = doc
+        .as_object()
+        .expect("object")
+        .keys()
+        .map(String::as_str)
+        .collect();
     let mut sorted = keys.clone();
     sorted.sort_unstable();
-    assert_eq!(sorted, ["d_sum", "demos", "dm", "j", "k", "km", "optimum", "presets", "s"]);
+    assert_eq!(
+        sorted,
+        [
+            "d_sum", "demos", "dm", "j", "k", "km", "optimum", "presets", "s"
+        ]
+    );
     let n = 12;
     assert_eq!(doc["dm"].as_array().expect("dm").len(), n);
     assert_eq!(doc["km"].as_array().expect("km").len(), n);
@@ -97,7 +113,12 @@ fn landscape_json_has_exactly_the_documented_shape() {
         }
     }
     let opt = &doc["optimum"];
-    let mut opt_keys: Vec<&str> = opt.as_object().expect("optimum").keys().map(String::as_str).collect();
+    let mut opt_keys: Vec<&str> = opt
+        .as_object()
+        .expect("optimum")
+        .keys()
+        .map(String::as_str)
+        .collect();
     opt_keys.sort_unstable();
     assert_eq!(opt_keys, ["d_sum", "dm", "j", "km", "on_edge", "s", "zeta"]);
     assert!(opt["j"].as_f64().expect("j") <= grid_min);
@@ -130,7 +151,11 @@ fn changing_k_recombines_the_same_grids() {
 #[test]
 fn a_folder_means_every_mcap_in_it() {
     let out = dmpscope(&["info", "--json", sample().to_str().expect("path")]);
-    let folder = dmpscope(&["info", "--json", repo().join("assets").to_str().expect("path")]);
+    let folder = dmpscope(&[
+        "info",
+        "--json",
+        repo().join("assets").to_str().expect("path"),
+    ]);
     assert_eq!(out.stdout, folder.stdout);
 }
 
@@ -140,7 +165,15 @@ fn extract_prints_gains_edge_flag_and_table() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
     assert!(stdout.starts_with("(M:D:K) = 1 : "), "{stdout}");
-    for needle in ["zeta", "J ", "on edge = ", "Table I: d_mean", "Table I: a_peak", "Extracted", "Hrstc4"] {
+    for needle in [
+        "zeta",
+        "J ",
+        "on edge = ",
+        "Table I: d_mean",
+        "Table I: a_peak",
+        "Extracted",
+        "Hrstc4",
+    ] {
         assert!(stdout.contains(needle), "missing {needle}: {stdout}");
     }
 }
@@ -159,7 +192,11 @@ fn extract_flags_an_optimum_on_the_box_edge() {
         "1",
     ]);
     assert!(out.status.success());
-    assert!(text(&out.stdout).contains("on edge = yes: K/M at its maximum"), "{}", text(&out.stdout));
+    assert!(
+        text(&out.stdout).contains("on edge = yes: K/M at its maximum"),
+        "{}",
+        text(&out.stdout)
+    );
     assert!(text(&out.stderr).contains("warning: the optimum lies on the edge"));
 }
 
@@ -197,7 +234,10 @@ fn the_sample_generator_is_deterministic() {
     assert!(result.status.success(), "{}", text(&result.stderr));
     let fresh = std::fs::read(&out).expect("written");
     let bundled = std::fs::read(sample()).expect("bundled");
-    assert!(fresh == bundled, "assets/reach10.mcap differs from `dmpscope gen-sample`");
+    assert!(
+        fresh == bundled,
+        "assets/reach10.mcap differs from `dmpscope gen-sample`"
+    );
 }
 
 #[test]
@@ -212,10 +252,18 @@ fn bad_files_get_an_error_naming_them() {
     let bytes = std::fs::read(sample()).expect("sample");
     let truncated = tmp("truncated.mcap");
     std::fs::write(&truncated, &bytes[..bytes.len() / 2]).expect("write");
-    let out = dmpscope(&["landscape", truncated.to_str().expect("path"), "--grid", "4"]);
+    let out = dmpscope(&[
+        "landscape",
+        truncated.to_str().expect("path"),
+        "--grid",
+        "4",
+    ]);
     assert!(!out.status.success());
     let err = text(&out.stderr);
-    assert!(err.contains("truncated.mcap") && err.contains("truncated"), "{err}");
+    assert!(
+        err.contains("truncated.mcap") && err.contains("truncated"),
+        "{err}"
+    );
 
     let out = dmpscope(&["info", "/nonexistent/file.mcap"]);
     assert!(!out.status.success());
@@ -226,9 +274,22 @@ fn bad_files_get_an_error_naming_them() {
 fn one_demo_is_told_that_s_needs_two() {
     // Regenerating from a single demo: S is 0 and a note says why.
     let one = tmp("one.mcap");
-    let gen_out = dmpscope(&["gen-sample", "--demos", "1", "--out", one.to_str().expect("path")]);
+    let gen_out = dmpscope(&[
+        "gen-sample",
+        "--demos",
+        "1",
+        "--out",
+        one.to_str().expect("path"),
+    ]);
     assert!(gen_out.status.success());
-    let out = dmpscope(&["regen", one.to_str().expect("path"), "--dm", "25", "--km", "156.25"]);
+    let out = dmpscope(&[
+        "regen",
+        one.to_str().expect("path"),
+        "--dm",
+        "25",
+        "--km",
+        "156.25",
+    ]);
     assert!(out.status.success());
     assert!(text(&out.stderr).contains("S needs two or more"));
     assert!(text(&out.stdout).contains("S = 0.000000"));

@@ -29,7 +29,7 @@ pub struct SavGol {
 impl SavGol {
     /// A filter of an odd `window` and a polynomial `order` < `window`.
     pub fn new(window: usize, order: usize) -> Result<Self> {
-        if window % 2 == 0 || window < 3 {
+        if window.is_multiple_of(2) || window < 3 {
             return Err(Error::InvalidSetting(format!(
                 "Savitzky-Golay window must be odd and at least 3, got {window}"
             )));

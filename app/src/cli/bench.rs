@@ -30,7 +30,7 @@ pub struct Args {
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     let m = v.len() / 2;
-    if v.len() % 2 == 1 {
+    if !v.len().is_multiple_of(2) {
         v[m]
     } else {
         (v[m - 1] + v[m]) / 2.0
@@ -40,7 +40,11 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// Times the landscape and the operating point; prints medians in ms.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let t0 = Instant::now();
-    let (_, model) = load_model_with(&args.files, &PrepSettings::default(), DmpSettings::default())?;
+    let (_, model) = load_model_with(
+        &args.files,
+        &PrepSettings::default(),
+        DmpSettings::default(),
+    )?;
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let axis = Axis {
         n: args.grid,

@@ -34,9 +34,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let e = &optimum.eval;
     println!("(M:D:K) = 1 : {:.4} : {:.4}", e.dm, e.km);
     println!("zeta    = {:.4}", e.zeta);
-    println!("J       = {:.6}  (S = {:.6}, sum d = {:.6} m, k = {k})", optimum.j, e.s, e.d_sum);
+    println!(
+        "J       = {:.6}  (S = {:.6}, sum d = {:.6} m, k = {k})",
+        optimum.j, e.s, e.d_sum
+    );
     if optimum.on_edge() {
-        println!("on edge = yes: {} (widen the range)", optimum.edges.describe());
+        println!(
+            "on edge = yes: {} (widen the range)",
+            optimum.edges.describe()
+        );
     } else {
         println!("on edge = no");
     }

@@ -57,7 +57,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "wrote {} demos to {} (hesitation and correction in: {})",
         demos.len(),
         args.out.display(),
-        if corrected.is_empty() { "none".to_owned() } else { corrected.join(", ") }
+        if corrected.is_empty() {
+            "none".to_owned()
+        } else {
+            corrected.join(", ")
+        }
     );
     Ok(())
 }

@@ -27,12 +27,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let width = infos.iter().map(|i| i.name.len()).max().unwrap_or(4).max(4);
     println!(
-        "{:<width$}  {:>7}  {:>8}  {:>8}  {:<26}  {:<26}",
+        "{:<width$}  {:>7}  {:>8}  {:>8}  {:<26}  {}",
         "demo", "samples", "duration", "rate", "start [m]", "goal [m]"
     );
     for i in &infos {
         println!(
-            "{:<width$}  {:>7}  {:>7.3}s  {:>6.1}Hz  {:<26}  {:<26}",
+            "{:<width$}  {:>7}  {:>7.3}s  {:>6.1}Hz  {:<26}  {}",
             i.name,
             i.n_samples,
             i.duration_s,

@@ -81,7 +81,12 @@ pub fn compute(model: &Arc<Model>, grid: Grid) -> anyhow::Result<Landscape> {
 pub fn landscape_and_optimum(
     input: &InputArgs,
     grid: &GridArgs,
-) -> anyhow::Result<(Vec<dmpscope_core::RawDemo>, Arc<Model>, Landscape, Extraction)> {
+) -> anyhow::Result<(
+    Vec<dmpscope_core::RawDemo>,
+    Arc<Model>,
+    Landscape,
+    Extraction,
+)> {
     if !grid.k.is_finite() || grid.k < 0.0 {
         anyhow::bail!("--k must be finite and >= 0, got {}", grid.k);
     }

@@ -8,8 +8,9 @@ use anyhow::Context;
 /// Writes `text` to `out` (stdout when `None` or `-`).
 pub fn write_text(out: Option<&Path>, text: &str) -> anyhow::Result<()> {
     match out {
-        Some(path) if path != Path::new("-") => std::fs::write(path, text)
-            .with_context(|| format!("{}: cannot write", path.display())),
+        Some(path) if path != Path::new("-") => {
+            std::fs::write(path, text).with_context(|| format!("{}: cannot write", path.display()))
+        }
         _ => {
             let mut stdout = std::io::stdout().lock();
             stdout.write_all(text.as_bytes())?;
@@ -25,9 +26,9 @@ pub fn progress_bar(total: u64, what: &str) -> indicatif::ProgressBar {
         Some(total),
         indicatif::ProgressDrawTarget::stderr(),
     );
-    if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "{msg} [{bar:40}] {pos}/{len} points ({elapsed})",
-    ) {
+    if let Ok(style) =
+        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} points ({elapsed})")
+    {
         bar.set_style(style.progress_chars("=> "));
     }
     bar.set_message(what.to_owned());

@@ -38,12 +38,25 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "D/M = {}, K/M = {}, zeta = {:.4}, S = {:.6}, sum d = {:.6} m",
         args.dm, args.km, eval.zeta, eval.s, eval.d_sum
     );
-    let w = model.demos().iter().map(|d| d.name.len()).max().unwrap_or(4).max(4);
-    let _ = writeln!(summary, "{:<w$}  {:>11}  {:>14}", "demo", "d_mean [mm]", "a_peak [m/s^2]");
+    let w = model
+        .demos()
+        .iter()
+        .map(|d| d.name.len())
+        .max()
+        .unwrap_or(4)
+        .max(4);
+    let _ = writeln!(
+        summary,
+        "{:<w$}  {:>11}  {:>14}",
+        "demo", "d_mean [mm]", "a_peak [m/s^2]"
+    );
     for (demo, (d, a)) in model.demos().iter().zip(eval.d.iter().zip(&eval.a_peak)) {
         let _ = writeln!(summary, "{:<w$}  {:>11.4}  {:>14.3}", demo.name, d * 1e3, a);
     }
-    let to_stdout = args.out.as_deref().is_some_and(|p| p == std::path::Path::new("-"));
+    let to_stdout = args
+        .out
+        .as_deref()
+        .is_some_and(|p| p == std::path::Path::new("-"));
     if to_stdout {
         eprint!("{summary}");
     } else {
@@ -53,9 +66,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         eprintln!("note: pass --out F.csv to write the regenerated paths");
         return Ok(());
     };
-    let mut csv = String::from(
-        "demo,s,t_s,x,y,z,demo_x,demo_y,demo_z,vx,vy,vz,ax,ay,az\n",
-    );
+    let mut csv = String::from("demo,s,t_s,x,y,z,demo_x,demo_y,demo_z,vx,vy,vz,ax,ay,az\n");
     for (i, demo) in model.demos().iter().enumerate() {
         let path = model.rollout(i, args.dm, args.km);
         let n = demo.len();
@@ -69,7 +80,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 "{},{s},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 demo.name,
                 s * demo.duration_s,
-                p[0], p[1], p[2], q[0], q[1], q[2], v[0], v[1], v[2], a[0], a[1], a[2]
+                p[0],
+                p[1],
+                p[2],
+                q[0],
+                q[1],
+                q[2],
+                v[0],
+                v[1],
+                v[2],
+                a[0],
+                a[1],
+                a[2]
             );
         }
     }
