@@ -27,8 +27,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let width = infos.iter().map(|i| i.name.len()).max().unwrap_or(4).max(4);
     println!(
-        "{:<width$}  {:>7}  {:>8}  {:>8}  {:<26}  {}",
-        "demo", "samples", "duration", "rate", "start [m]", "goal [m]"
+        "{:<width$}  {:>7}  {:>8}  {:>8}  {:<26}  goal [m]",
+        "demo", "samples", "duration", "rate", "start [m]"
     );
     for i in &infos {
         println!(
