@@ -119,10 +119,17 @@ pub fn extract(model: &Model, landscape: &Landscape, k: f64) -> Result<Extractio
         SPAN_TOLERANCE,
         2000,
     );
-    // The grid point itself is a candidate too (NM never returns worse).
-    let (dm, km) = to_gains(found.x);
-    let eval = model.evaluate(dm, km);
-    let x = found.x;
+    // Mapping a clipped coordinate back (exp of ln) can miss the bound by an
+    // ulp: clamp the gains themselves. The grid point stays the answer when
+    // the refinement found nothing better.
+    let clamp = |(dm, km): (f64, f64)| (dm.clamp(ax_dm.lo, ax_dm.hi), km.clamp(ax_km.lo, ax_km.hi));
+    let (dm, km) = clamp(to_gains(found.x));
+    let mut eval = model.evaluate(dm, km);
+    let mut x = found.x;
+    if !(eval.j(k) <= grid_min_j) {
+        eval = model.evaluate(landscape.dm[i_dm], landscape.km[i_km]);
+        x = x0;
+    }
     let edges = Edges {
         dm_low: x[0] - lo[0] < EDGE_TOLERANCE,
         dm_high: hi[0] - x[0] < EDGE_TOLERANCE,

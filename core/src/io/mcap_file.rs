@@ -16,6 +16,9 @@ use crate::error::{Error, Location, Result};
 /// is an error, never an allocation.
 pub const RECORD_LENGTH_LIMIT: usize = 256 << 20;
 
+/// The most bytes read from the input at once.
+const READ_PIECE: usize = 1 << 20;
+
 /// What one file gave.
 #[derive(Clone, Debug, Default)]
 pub struct Loaded {
@@ -56,8 +59,10 @@ pub fn load_reader<R: Read>(label: &str, mut input: R) -> Result<Loaded> {
         at: at(),
         reason: describe(&e),
     };
+    // Chunk CRCs are checked before any of a chunk's messages are handed out,
+    // so a corrupt chunk is reported as corrupt, not as a bad message.
     let options = LinearReaderOptions::default()
-        .with_validate_chunk_crcs(true)
+        .with_prevalidate_chunk_crcs(true)
         .with_record_length_limit(RECORD_LENGTH_LIMIT);
     let mut reader = LinearReader::new_with_options(options);
     // Schema id -> (name, encoding); channel id -> accumulator or skip note.
@@ -68,7 +73,9 @@ pub fn load_reader<R: Read>(label: &str, mut input: R) -> Result<Loaded> {
     while let Some(event) = reader.next_event() {
         match event.map_err(mcap_err)? {
             LinearReadEvent::ReadRequest(need) => {
-                let buf = reader.insert(need);
+                // `insert` zero-fills what it is asked for: ask in bounded
+                // pieces so a declared length is never allocated up front.
+                let buf = reader.insert(need.min(READ_PIECE));
                 let n = read_some(&mut input, buf).map_err(|source| Error::Io {
                     file: label.to_owned(),
                     source,
