@@ -126,7 +126,7 @@ pub fn extract(model: &Model, landscape: &Landscape, k: f64) -> Result<Extractio
     let (dm, km) = clamp(to_gains(found.x));
     let mut eval = model.evaluate(dm, km);
     let mut x = found.x;
-    if !(eval.j(k) <= grid_min_j) {
+    if eval.j(k).is_nan() || eval.j(k) > grid_min_j {
         eval = model.evaluate(landscape.dm[i_dm], landscape.km[i_km]);
         x = x0;
     }
