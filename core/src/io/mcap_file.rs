@@ -1,6 +1,8 @@
 //! The MCAP loader: one pass over the file with mcap's sans-IO
-//! [`LinearReader`], chunk CRCs checked, messages routed to their decoders,
-//! one demo per topic (method.md sections 1 and 2.1-2.2).
+//! [`LinearReader`], chunk CRCs checked before a chunk's messages are used,
+//! messages routed to their decoders, one demo per topic and key (method.md
+//! sections 1 and 2.1-2.2). A file that ends early keeps the messages of its
+//! complete chunks, with a warning.
 
 use std::collections::BTreeMap;
 use std::io::Read;
@@ -8,7 +10,7 @@ use std::io::Read;
 use mcap::records::Record;
 use mcap::sans_io::linear_reader::{LinearReadEvent, LinearReader, LinearReaderOptions};
 
-use super::{Decoder, decoder_for};
+use super::{ChannelSchema, MessageDecoder, decoder_for};
 use crate::demo::{RawDemo, TimeSource};
 use crate::error::{Error, Location, Result};
 
@@ -19,41 +21,98 @@ pub const RECORD_LENGTH_LIMIT: usize = 256 << 20;
 /// The most bytes read from the input at once.
 const READ_PIECE: usize = 1 << 20;
 
+/// Which way is up in the recording.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum UpAxis {
+    /// z up, x forward, y left (ROS REP 103, Foxglove): used as is.
+    #[default]
+    ZUp,
+    /// y up, x right, z backward (OpenVR native): turned to z-up as
+    /// `(x, y, z) -> (-z, -x, y)`.
+    YUp,
+}
+
+impl UpAxis {
+    /// The position in dmpscope's z-up frame.
+    pub fn to_z_up(self, p: [f64; 3]) -> [f64; 3] {
+        match self {
+            Self::ZUp => p,
+            Self::YUp => [-p[2], -p[0], p[1]],
+        }
+    }
+}
+
+/// How to read files.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LoadOptions {
+    /// Keep only these keys (TF child frames, pose-array indices) of
+    /// multi-pose topics; empty keeps all.
+    pub frames: Vec<String>,
+    /// The recording's up axis.
+    pub up: UpAxis,
+}
+
 /// What one file gave.
 #[derive(Clone, Debug, Default)]
 pub struct Loaded {
-    /// Demos in topic-name order.
+    /// Demos in topic-name order, then key order.
     pub demos: Vec<RawDemo>,
     /// Topics seen but not read, with their schema names.
     pub skipped: Vec<(String, String)>,
+    /// Things the user should know that did not stop the load (a truncated
+    /// file's lost tail).
+    pub warnings: Vec<String>,
 }
 
-/// Loads the demos of the MCAP file at `path`; `label` names it in errors.
+/// Loads the demos of the MCAP file at `path` with default options.
 pub fn load_path(path: &std::path::Path) -> Result<Loaded> {
+    load_path_with(path, &LoadOptions::default())
+}
+
+/// Loads the demos of the MCAP file at `path` (named by its path in errors).
+pub fn load_path_with(path: &std::path::Path, options: &LoadOptions) -> Result<Loaded> {
     let label = path.display().to_string();
     let file = std::fs::File::open(path).map_err(|source| Error::Io {
         file: label.clone(),
         source,
     })?;
-    load_reader(&label, std::io::BufReader::with_capacity(1 << 20, file))
+    load_reader(
+        &label,
+        std::io::BufReader::with_capacity(READ_PIECE, file),
+        options,
+    )
+}
+
+/// Loads the demos of an MCAP file held in memory with default options.
+pub fn load_bytes(label: &str, bytes: &[u8]) -> Result<Loaded> {
+    load_reader(label, bytes, &LoadOptions::default())
 }
 
 /// Loads the demos of an MCAP file held in memory (a browser upload, a test).
-pub fn load_bytes(label: &str, bytes: &[u8]) -> Result<Loaded> {
-    load_reader(label, bytes)
+pub fn load_bytes_with(label: &str, bytes: &[u8], options: &LoadOptions) -> Result<Loaded> {
+    load_reader(label, bytes, options)
 }
 
-struct TopicAcc {
-    topic: String,
-    decoder: Decoder,
+/// One demo being collected: a topic, or one key of a multi-pose topic.
+#[derive(Default)]
+struct Stream {
     stamps: Vec<Option<i64>>,
     log_times: Vec<i64>,
     positions: Vec<[f64; 3]>,
 }
 
+struct Channel {
+    topic: String,
+    decoder: Box<dyn MessageDecoder>,
+    /// Messages seen, the sample index of errors.
+    messages: usize,
+}
+
 /// Loads the demos of an MCAP stream; `label` names the file in errors and
-/// in the demo names (`label:topic`, with only the file name of a path).
-pub fn load_reader<R: Read>(label: &str, mut input: R) -> Result<Loaded> {
+/// in the demo names (`file:topic`, `file:topic:key`, with only the file name
+/// of a path).
+pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) -> Result<Loaded> {
     let at = || Location::file(label);
     let mcap_err = |e: mcap::McapError| Error::Mcap {
         at: at(),
@@ -61,17 +120,31 @@ pub fn load_reader<R: Read>(label: &str, mut input: R) -> Result<Loaded> {
     };
     // Chunk CRCs are checked before any of a chunk's messages are handed out,
     // so a corrupt chunk is reported as corrupt, not as a bad message.
-    let options = LinearReaderOptions::default()
+    let reader_options = LinearReaderOptions::default()
         .with_prevalidate_chunk_crcs(true)
         .with_record_length_limit(RECORD_LENGTH_LIMIT);
-    let mut reader = LinearReader::new_with_options(options);
-    // Schema id -> (name, encoding); channel id -> accumulator or skip note.
-    let mut schemas: BTreeMap<u16, (String, String)> = BTreeMap::new();
-    let mut channels: BTreeMap<u16, Option<TopicAcc>> = BTreeMap::new();
+    let mut reader = LinearReader::new_with_options(reader_options);
+    let mut schemas: BTreeMap<u16, (String, String, Vec<u8>)> = BTreeMap::new();
+    let mut channels: BTreeMap<u16, Option<Channel>> = BTreeMap::new();
+    let mut streams: BTreeMap<(String, Option<String>), Stream> = BTreeMap::new();
     let mut skipped: Vec<(String, String)> = Vec::new();
+    let mut warnings = Vec::new();
+    let mut bytes_read: u64 = 0;
 
     while let Some(event) = reader.next_event() {
-        match event.map_err(mcap_err)? {
+        let event = match event {
+            Ok(event) => event,
+            Err(mcap::McapError::UnexpectedEof) if !streams.is_empty() => {
+                let kept: usize = streams.values().map(|s| s.positions.len()).sum();
+                warnings.push(format!(
+                    "{label}: the file is truncated (it ends inside a record after {bytes_read} bytes); \
+                     kept the {kept} messages of its complete chunks, the rest is lost"
+                ));
+                break;
+            }
+            Err(e) => return Err(mcap_err(e)),
+        };
+        match event {
             LinearReadEvent::ReadRequest(need) => {
                 // `insert` zero-fills what it is asked for: ask in bounded
                 // pieces so a declared length is never allocated up front.
@@ -80,36 +153,53 @@ pub fn load_reader<R: Read>(label: &str, mut input: R) -> Result<Loaded> {
                     file: label.to_owned(),
                     source,
                 })?;
+                bytes_read += n as u64;
                 reader.notify_read(n);
             }
             LinearReadEvent::Record { opcode, data } => {
                 match mcap::parse_record(opcode, data).map_err(mcap_err)? {
-                    Record::Schema { header, .. } => {
-                        schemas.insert(header.id, (header.name, header.encoding));
+                    Record::Schema { header, data } => {
+                        schemas
+                            .insert(header.id, (header.name, header.encoding, data.into_owned()));
                     }
                     Record::Channel(ch) => {
                         if channels.contains_key(&ch.id) {
                             continue;
                         }
-                        let (schema_name, schema_encoding) =
-                            schemas.get(&ch.schema_id).cloned().unwrap_or_default();
-                        let acc = decoder_for(&ch.message_encoding, &schema_encoding, &schema_name)
-                            .map(|decoder| TopicAcc {
-                                topic: ch.topic.clone(),
-                                decoder,
-                                stamps: Vec::new(),
-                                log_times: Vec::new(),
-                                positions: Vec::new(),
-                            });
-                        if acc.is_none() {
-                            let schema = if schema_name.is_empty() {
-                                format!("no schema, {}", ch.message_encoding)
-                            } else {
-                                schema_name
-                            };
-                            skipped.push((ch.topic.clone(), schema));
-                        }
-                        channels.insert(ch.id, acc);
+                        let (name, encoding, data) = schemas
+                            .get(&ch.schema_id)
+                            .map(|(n, e, d)| (n.as_str(), e.as_str(), d.as_slice()))
+                            .unwrap_or(("", "", &[]));
+                        let schema = ChannelSchema {
+                            message_encoding: &ch.message_encoding,
+                            schema_name: name,
+                            schema_encoding: encoding,
+                            schema_data: data,
+                        };
+                        let decoder = match decoder_for(&schema) {
+                            Some(Ok(decoder)) => Some(decoder),
+                            Some(Err(reason)) => {
+                                return Err(Error::Decode {
+                                    at: at().topic(&ch.topic),
+                                    reason: format!("unusable schema {name}: {reason}"),
+                                });
+                            }
+                            None => {
+                                let what = if name.is_empty() {
+                                    format!("no schema, {}", ch.message_encoding)
+                                } else {
+                                    name.to_owned()
+                                };
+                                skipped.push((ch.topic.clone(), what));
+                                None
+                            }
+                        };
+                        let entry = decoder.map(|decoder| Channel {
+                            topic: ch.topic.clone(),
+                            decoder,
+                            messages: 0,
+                        });
+                        channels.insert(ch.id, entry);
                     }
                     Record::Message { header, data } => {
                         let Some(slot) = channels.get_mut(&header.channel_id) else {
@@ -121,24 +211,44 @@ pub fn load_reader<R: Read>(label: &str, mut input: R) -> Result<Loaded> {
                                 ),
                             });
                         };
-                        let Some(acc) = slot else { continue };
-                        let index = acc.positions.len();
-                        let sample = (acc.decoder)(&data).map_err(|reason| Error::Decode {
-                            at: at().topic(&acc.topic).sample(index),
-                            reason,
-                        })?;
-                        for (axis, v) in sample.position.iter().enumerate() {
-                            if !v.is_finite() {
-                                return Err(Error::NonFinite {
-                                    at: at().topic(&acc.topic).sample(index),
-                                    field: ["position.x", "position.y", "position.z"][axis],
-                                });
-                            }
+                        let Some(channel) = slot else { continue };
+                        let index = channel.messages;
+                        channel.messages += 1;
+                        let log_time = i64::try_from(header.log_time).unwrap_or(i64::MAX);
+                        let mut bad: Option<(Option<String>, usize)> = None;
+                        let topic = &channel.topic;
+                        channel
+                            .decoder
+                            .decode(&data, &mut |sample| {
+                                let key = sample.key.map(|k| k.into_owned());
+                                if let Some(k) = &key {
+                                    if !options.frames.is_empty() && !options.frames.contains(k) {
+                                        return;
+                                    }
+                                }
+                                if let Some(axis) =
+                                    sample.position.iter().position(|v| !v.is_finite())
+                                {
+                                    bad.get_or_insert((key.clone(), axis));
+                                    return;
+                                }
+                                let stream = streams.entry((topic.clone(), key)).or_default();
+                                stream.stamps.push(sample.stamp_ns);
+                                stream.log_times.push(log_time);
+                                stream.positions.push(options.up.to_z_up(sample.position));
+                            })
+                            .map_err(|reason| Error::Decode {
+                                at: at().topic(topic).sample(index),
+                                reason,
+                            })?;
+                        if let Some((key, axis)) = bad {
+                            let name =
+                                key.map_or_else(|| topic.clone(), |k| format!("{topic}:{k}"));
+                            return Err(Error::NonFinite {
+                                at: at().topic(name).sample(index),
+                                field: ["position.x", "position.y", "position.z"][axis],
+                            });
                         }
-                        acc.stamps.push(sample.stamp_ns);
-                        acc.log_times
-                            .push(i64::try_from(header.log_time).unwrap_or(i64::MAX));
-                        acc.positions.push(sample.position);
                     }
                     _ => {}
                 }
@@ -149,13 +259,11 @@ pub fn load_reader<R: Read>(label: &str, mut input: R) -> Result<Loaded> {
     let file_name = std::path::Path::new(label)
         .file_name()
         .map_or_else(|| label.to_owned(), |n| n.to_string_lossy().into_owned());
-    let mut demos: Vec<RawDemo> = channels
-        .into_values()
-        .flatten()
-        .filter(|acc| !acc.positions.is_empty())
-        .map(|acc| finish_topic(label, &file_name, acc))
+    let demos: Vec<RawDemo> = streams
+        .into_iter()
+        .filter(|(_, s)| !s.positions.is_empty())
+        .map(|((topic, key), s)| finish_stream(label, &file_name, topic, key, s))
         .collect();
-    demos.sort_by(|a, b| a.topic.cmp(&b.topic));
     skipped.sort();
     if demos.is_empty() {
         return Err(Error::NoDemos {
@@ -163,23 +271,37 @@ pub fn load_reader<R: Read>(label: &str, mut input: R) -> Result<Loaded> {
             skipped,
         });
     }
-    Ok(Loaded { demos, skipped })
+    Ok(Loaded {
+        demos,
+        skipped,
+        warnings,
+    })
 }
 
-/// Chooses the time source of one topic (method.md section 2.1): header
+/// Chooses the time source of one stream (method.md section 2.1): header
 /// stamps, unless one is missing or all are zero, then log time.
-fn finish_topic(label: &str, file_name: &str, acc: TopicAcc) -> RawDemo {
-    let stamps: Option<Vec<i64>> = acc.stamps.iter().copied().collect();
+fn finish_stream(
+    label: &str,
+    file_name: &str,
+    topic: String,
+    key: Option<String>,
+    s: Stream,
+) -> RawDemo {
+    let stamps: Option<Vec<i64>> = s.stamps.iter().copied().collect();
     let (stamps_ns, time_source) = match stamps {
-        Some(s) if s.iter().any(|&v| v != 0) => (s, TimeSource::HeaderStamp),
-        _ => (acc.log_times, TimeSource::LogTime),
+        Some(v) if v.iter().any(|&t| t != 0) => (v, TimeSource::HeaderStamp),
+        _ => (s.log_times, TimeSource::LogTime),
+    };
+    let source = match key {
+        Some(k) => format!("{topic}:{k}"),
+        None => topic,
     };
     RawDemo {
-        name: format!("{file_name}:{}", acc.topic),
+        name: format!("{file_name}:{source}"),
         file: label.to_owned(),
-        topic: acc.topic,
+        topic: source,
         stamps_ns,
-        positions: acc.positions,
+        positions: s.positions,
         time_source,
     }
 }

@@ -2,39 +2,72 @@
 //!
 //! [`mcap_file`] walks an MCAP file with mcap's sans-IO reader (so the same
 //! code reads a file, a byte slice from a browser upload or a stream) and hands
-//! every message to the decoder its schema names. A decoder is one small
-//! function from message bytes to a [`PoseSample`]; [`decoder_for`] is the
-//! registry. [`write`] is the reverse path, used by the sample generator and
-//! by the tests to make files.
+//! every message to the decoder its channel's schema names. A decoder turns
+//! message bytes into zero or more [`PoseSample`]s (a TF message holds one per
+//! child frame); [`decoder_for`] is the registry, one arm per encoding.
+//! [`write`] is the reverse path, used by the sample generator and the tests.
 
 pub mod cdr;
 pub mod mcap_file;
 pub mod ros2;
 pub mod write;
 
-pub use mcap_file::{Loaded, load_bytes, load_path, load_reader};
+use std::borrow::Cow;
 
-/// What a decoder extracts from one message.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PoseSample {
-    /// The message's own stamp in nanoseconds, `None` when it has none.
+pub use mcap_file::{
+    LoadOptions, Loaded, UpAxis, load_bytes, load_bytes_with, load_path, load_path_with,
+    load_reader,
+};
+
+/// One pose a decoder found in a message.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PoseSample<'a> {
+    /// Which of several poses in one message this is (a TF child frame, an
+    /// index into a pose array); `None` for single-pose messages. Each key of
+    /// a topic becomes its own demo.
+    pub key: Option<Cow<'a, str>>,
+    /// The message's own stamp in nanoseconds, `None` when it has none (or
+    /// the zero stamp, which ROS uses for "no stamp").
     pub stamp_ns: Option<i64>,
-    /// The position in metres.
+    /// The position in metres, in the recording's own axes.
     pub position: [f64; 3],
 }
 
-/// A decoder: message bytes to one pose sample, or a reason it failed.
-pub type Decoder = fn(&[u8]) -> Result<PoseSample, String>;
+/// Decodes the messages of one channel.
+pub trait MessageDecoder: Send {
+    /// Decodes one message, handing every pose in it to `out`; an `Err` is
+    /// the reason the bytes are not a valid message of the schema.
+    fn decode(&mut self, data: &[u8], out: &mut dyn FnMut(PoseSample<'_>)) -> Result<(), String>;
+}
 
-/// The decoder for a channel, from its message encoding and its schema's
-/// encoding and name (MCAP registry names); `None` when dmpscope does not read it.
-pub fn decoder_for(
-    message_encoding: &str,
-    schema_encoding: &str,
-    schema_name: &str,
-) -> Option<Decoder> {
-    match (message_encoding, schema_encoding, schema_name) {
-        ("cdr", "ros2msg", "geometry_msgs/msg/PoseStamped") => Some(ros2::decode_pose_stamped),
+/// A decoder that is a plain function giving one pose per message.
+pub struct SinglePose(pub fn(&[u8]) -> Result<PoseSample<'static>, String>);
+
+impl MessageDecoder for SinglePose {
+    fn decode(&mut self, data: &[u8], out: &mut dyn FnMut(PoseSample<'_>)) -> Result<(), String> {
+        out((self.0)(data)?);
+        Ok(())
+    }
+}
+
+/// What the registry needs to know about a channel.
+#[derive(Clone, Copy, Debug)]
+pub struct ChannelSchema<'a> {
+    /// The channel's message encoding (`cdr`, `ros1`, `protobuf`, `json`).
+    pub message_encoding: &'a str,
+    /// The schema's name, e.g. `geometry_msgs/msg/PoseStamped`.
+    pub schema_name: &'a str,
+    /// The schema's encoding (`ros2msg`, `ros1msg`, `protobuf`, `jsonschema`).
+    pub schema_encoding: &'a str,
+    /// The schema's bytes (a FileDescriptorSet for protobuf).
+    pub schema_data: &'a [u8],
+}
+
+/// The decoder for a channel, `None` when dmpscope does not read its schema,
+/// `Some(Err)` when it should but the schema itself is unusable.
+pub fn decoder_for(channel: &ChannelSchema<'_>) -> Option<Result<Box<dyn MessageDecoder>, String>> {
+    match channel.message_encoding {
+        "cdr" => ros2::decoder(channel.schema_name).map(Ok),
         _ => None,
     }
 }

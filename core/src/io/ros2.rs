@@ -1,8 +1,8 @@
 //! ROS 2 message layouts (CDR): each decoder reads only the fields dmpscope
 //! needs, in wire order.
 
-use super::PoseSample;
 use super::cdr::{CdrReader, CdrWriter};
+use super::{MessageDecoder, PoseSample, SinglePose};
 
 /// The `ros2msg` schema text of `geometry_msgs/msg/PoseStamped`.
 pub const POSE_STAMPED_SCHEMA: &str = "std_msgs/Header header
@@ -34,7 +34,7 @@ float64 w 1
 
 /// `builtin_interfaces/Time` to nanoseconds; `None` for the zero stamp,
 /// which ROS uses for "no stamp".
-fn stamp_ns(sec: i32, nanosec: u32) -> Option<i64> {
+pub(crate) fn stamp_ns(sec: i32, nanosec: u32) -> Option<i64> {
     if sec == 0 && nanosec == 0 {
         None
     } else {
@@ -42,9 +42,17 @@ fn stamp_ns(sec: i32, nanosec: u32) -> Option<i64> {
     }
 }
 
+/// The decoder of a ROS 2 schema, by its MCAP schema name.
+pub fn decoder(schema_name: &str) -> Option<Box<dyn MessageDecoder>> {
+    match schema_name {
+        "geometry_msgs/msg/PoseStamped" => Some(Box::new(SinglePose(decode_pose_stamped))),
+        _ => None,
+    }
+}
+
 /// Decodes `geometry_msgs/msg/PoseStamped`: header (stamp, frame id), then the
 /// position of the pose (the orientation is not needed).
-pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample, String> {
+pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String> {
     let mut r = CdrReader::new(message)?;
     let sec = r.i32("header.stamp.sec")?;
     let nanosec = r.u32("header.stamp.nanosec")?;
@@ -61,6 +69,7 @@ pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample, String> {
         r.f64(field)?;
     }
     Ok(PoseSample {
+        key: None,
         stamp_ns: stamp_ns(sec, nanosec),
         position: [x, y, z],
     })
