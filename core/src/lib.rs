@@ -21,6 +21,7 @@ pub mod demo;
 pub mod dmp;
 pub mod error;
 pub mod extract;
+pub mod group;
 pub mod io;
 pub mod landscape;
 pub mod model;
@@ -28,6 +29,7 @@ pub mod nelder_mead;
 pub mod prepare;
 pub mod presets;
 pub mod savgol;
+pub mod segment;
 pub mod similarity;
 pub mod synth;
 

@@ -8,7 +8,9 @@ use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::landscape::{Axis, Grid};
 use dmpscope_core::{PrepSettings, landscape};
 
-use super::inputs::load_model_with;
+use dmpscope_core::io::load_path;
+
+use super::inputs::{expand, model_of};
 
 /// Arguments of `bench`.
 #[derive(Debug, clap::Args)]
@@ -25,6 +27,11 @@ pub struct Args {
     /// Operating-point repetitions.
     #[arg(long, default_value_t = 500)]
     points: usize,
+    /// Instead: measure ingestion of a generated PoseStamped recording of
+    /// this many messages (uncompressed and zstd), against mcap's
+    /// `MessageStream` on the same bytes.
+    #[arg(long, value_name = "MESSAGES")]
+    ingest: Option<usize>,
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -39,12 +46,15 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 /// Times the landscape and the operating point; prints medians in ms.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if let Some(messages) = args.ingest {
+        return super::bench_ingest::run(messages, args.repeat);
+    }
     let t0 = Instant::now();
-    let (_, model) = load_model_with(
-        &args.files,
-        &PrepSettings::default(),
-        DmpSettings::default(),
-    )?;
+    let mut raw = Vec::new();
+    for path in expand(&args.files)? {
+        raw.extend(load_path(&path)?.demos);
+    }
+    let (_, model) = model_of(raw, &PrepSettings::default(), DmpSettings::default())?;
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let axis = Axis {
         n: args.grid,

@@ -2,6 +2,7 @@
 //! ([`inputs`]) and writing outputs ([`output`]).
 
 mod bench;
+mod bench_ingest;
 mod extract;
 mod gen_sample;
 mod info;

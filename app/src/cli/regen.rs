@@ -3,6 +3,12 @@
 use std::fmt::Write;
 use std::path::PathBuf;
 
+use std::collections::BTreeMap;
+
+use anyhow::Context;
+use dmpscope_core::io::export::{dmp_export, regenerated_paths, write_pose_in_frame_json};
+use dmpscope_core::{Model, RawDemo};
+
 use super::inputs::{InputArgs, load_model};
 use super::output::write_text;
 
@@ -17,8 +23,10 @@ pub struct Args {
     /// K/M.
     #[arg(long)]
     km: f64,
-    /// Write the regenerated paths as CSV here (`-` for stdout, then the
-    /// summary goes to stderr).
+    /// Write the paths here: `.csv` (every regenerated path, `-` for stdout),
+    /// `.mcap` (demos and regenerated paths as `foxglove.PoseInFrame` JSON,
+    /// gains as metadata: opens in Foxglove and Rerun) or `.json` (gains and
+    /// DMP weights per demo and axis).
     #[arg(long, short)]
     out: Option<PathBuf>,
 }
@@ -30,7 +38,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             anyhow::bail!("{name} must be a positive number, got {v}");
         }
     }
-    let (_, model) = load_model(&args.input)?;
+    let (raw, model) = load_model(&args.input)?;
     let eval = model.evaluate(args.dm, args.km);
     let mut summary = String::new();
     let _ = writeln!(
@@ -63,9 +71,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         print!("{summary}");
     }
     let Some(out) = args.out else {
-        eprintln!("note: pass --out F.csv to write the regenerated paths");
+        eprintln!("note: pass --out F.csv, F.mcap or F.json to write the regenerated paths");
         return Ok(());
     };
+    let extension = out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match extension.as_deref() {
+        Some("mcap") => return write_mcap(&out, &raw, &model, args.dm, args.km),
+        Some("json") => {
+            let doc = dmp_export(&model, args.dm, args.km);
+            let mut text = serde_json::to_string_pretty(&doc)?;
+            text.push('\n');
+            return write_text(Some(&out), &text);
+        }
+        _ => {}
+    }
     let mut csv = String::from("demo,s,t_s,x,y,z,demo_x,demo_y,demo_z,vx,vy,vz,ax,ay,az\n");
     for (i, demo) in model.demos().iter().enumerate() {
         let path = model.rollout(i, args.dm, args.km);
@@ -96,4 +118,38 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     }
     write_text(Some(&out), &csv)
+}
+
+/// Writes demos and regenerated paths as `foxglove.PoseInFrame` (JSON) with
+/// the gains as metadata.
+fn write_mcap(
+    out: &std::path::Path,
+    raw: &[RawDemo],
+    model: &Model,
+    dm: f64,
+    km: f64,
+) -> anyhow::Result<()> {
+    let first_stamps: Vec<i64> = raw
+        .iter()
+        .map(|r| r.stamps_ns.iter().min().copied().unwrap_or(0))
+        .collect();
+    let paths = regenerated_paths(model, &first_stamps, dm, km);
+    let eval = model.evaluate(dm, km);
+    let metadata: BTreeMap<String, String> = [
+        ("dm", dm.to_string()),
+        ("km", km.to_string()),
+        ("zeta", eval.zeta.to_string()),
+        ("s", eval.s.to_string()),
+        ("d_sum", eval.d_sum.to_string()),
+        ("demos", model.demos().len().to_string()),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_owned(), v))
+    .collect();
+    let file =
+        std::fs::File::create(out).with_context(|| format!("{}: cannot create", out.display()))?;
+    write_pose_in_frame_json(std::io::BufWriter::new(file), &paths, "world", &metadata)
+        .with_context(|| format!("{}: cannot write MCAP", out.display()))?;
+    eprintln!("wrote {} paths to {}", paths.len(), out.display());
+    Ok(())
 }

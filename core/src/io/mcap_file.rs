@@ -118,11 +118,14 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
         at: at(),
         reason: describe(&e),
     };
-    // Chunk CRCs are checked before any of a chunk's messages are handed out,
-    // so a corrupt chunk is reported as corrupt, not as a bad message.
+    // Chunk CRCs are checked as each chunk ends (checking them first would
+    // make mcap reserve the chunk's declared size up front). A message that
+    // fails to decode is therefore held as `pending` until the file is read:
+    // if its chunk then fails its CRC, the file is reported corrupt instead.
     let reader_options = LinearReaderOptions::default()
-        .with_prevalidate_chunk_crcs(true)
+        .with_validate_chunk_crcs(true)
         .with_record_length_limit(RECORD_LENGTH_LIMIT);
+    let mut pending: Option<Error> = None;
     let mut reader = LinearReader::new_with_options(reader_options);
     let mut schemas: BTreeMap<u16, (String, String, Vec<u8>)> = BTreeMap::new();
     let mut channels: BTreeMap<u16, Option<Channel>> = BTreeMap::new();
@@ -134,7 +137,7 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
     while let Some(event) = reader.next_event() {
         let event = match event {
             Ok(event) => event,
-            Err(mcap::McapError::UnexpectedEof) if !streams.is_empty() => {
+            Err(mcap::McapError::UnexpectedEof) if pending.is_none() && !streams.is_empty() => {
                 let kept: usize = streams.values().map(|s| s.positions.len()).sum();
                 warnings.push(format!(
                     "{label}: the file is truncated (it ends inside a record after {bytes_read} bytes); \
@@ -142,7 +145,8 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
                 ));
                 break;
             }
-            Err(e) => return Err(mcap_err(e)),
+            Err(e @ mcap::McapError::BadChunkCrc { .. }) => return Err(mcap_err(e)),
+            Err(e) => return Err(pending.unwrap_or_else(|| mcap_err(e))),
         };
         match event {
             LinearReadEvent::ReadRequest(need) => {
@@ -212,39 +216,40 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
                             });
                         };
                         let Some(channel) = slot else { continue };
+                        if pending.is_some() {
+                            continue;
+                        }
                         let index = channel.messages;
                         channel.messages += 1;
                         let log_time = i64::try_from(header.log_time).unwrap_or(i64::MAX);
                         let mut bad: Option<(Option<String>, usize)> = None;
                         let topic = &channel.topic;
-                        channel
-                            .decoder
-                            .decode(&data, &mut |sample| {
-                                let key = sample.key.map(|k| k.into_owned());
-                                if let Some(k) = &key {
-                                    if !options.frames.is_empty() && !options.frames.contains(k) {
-                                        return;
-                                    }
-                                }
-                                if let Some(axis) =
-                                    sample.position.iter().position(|v| !v.is_finite())
-                                {
-                                    bad.get_or_insert((key.clone(), axis));
-                                    return;
-                                }
-                                let stream = streams.entry((topic.clone(), key)).or_default();
-                                stream.stamps.push(sample.stamp_ns);
-                                stream.log_times.push(log_time);
-                                stream.positions.push(options.up.to_z_up(sample.position));
-                            })
-                            .map_err(|reason| Error::Decode {
+                        let decoded = channel.decoder.decode(&data, &mut |sample| {
+                            let key = sample.key.map(|k| k.into_owned());
+                            if key.as_ref().is_some_and(|k| {
+                                !options.frames.is_empty() && !options.frames.contains(k)
+                            }) {
+                                return;
+                            }
+                            if let Some(axis) = sample.position.iter().position(|v| !v.is_finite())
+                            {
+                                bad.get_or_insert((key.clone(), axis));
+                                return;
+                            }
+                            let stream = streams.entry((topic.clone(), key)).or_default();
+                            stream.stamps.push(sample.stamp_ns);
+                            stream.log_times.push(log_time);
+                            stream.positions.push(options.up.to_z_up(sample.position));
+                        });
+                        if let Err(reason) = decoded {
+                            pending = Some(Error::Decode {
                                 at: at().topic(topic).sample(index),
                                 reason,
-                            })?;
-                        if let Some((key, axis)) = bad {
+                            });
+                        } else if let Some((key, axis)) = bad {
                             let name =
                                 key.map_or_else(|| topic.clone(), |k| format!("{topic}:{k}"));
-                            return Err(Error::NonFinite {
+                            pending = Some(Error::NonFinite {
                                 at: at().topic(name).sample(index),
                                 field: ["position.x", "position.y", "position.z"][axis],
                             });
@@ -256,6 +261,9 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
         }
     }
 
+    if let Some(err) = pending {
+        return Err(err);
+    }
     let file_name = std::path::Path::new(label)
         .file_name()
         .map_or_else(|| label.to_owned(), |n| n.to_string_lossy().into_owned());

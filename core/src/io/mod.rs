@@ -8,7 +8,13 @@
 //! [`write`] is the reverse path, used by the sample generator and the tests.
 
 pub mod cdr;
+pub mod csv;
+pub mod export;
+pub mod foxglove_json;
+pub mod foxglove_proto;
+pub mod foxglove_schemas;
 pub mod mcap_file;
+pub mod ros1;
 pub mod ros2;
 pub mod write;
 
@@ -68,6 +74,9 @@ pub struct ChannelSchema<'a> {
 pub fn decoder_for(channel: &ChannelSchema<'_>) -> Option<Result<Box<dyn MessageDecoder>, String>> {
     match channel.message_encoding {
         "cdr" => ros2::decoder(channel.schema_name).map(Ok),
+        "ros1" => ros1::decoder(channel.schema_name).map(Ok),
+        "protobuf" => foxglove_proto::decoder(channel),
+        "json" => foxglove_json::decoder(channel),
         _ => None,
     }
 }

@@ -1,0 +1,55 @@
+//! What a demonstration is: one per topic (and per key of multi-pose
+//! topics such as TF child frames), one per file, or the segments of
+//! continuous recordings.
+
+use serde::{Deserialize, Serialize};
+
+use crate::demo::RawDemo;
+use crate::error::Result;
+use crate::segment::{SegmentSettings, split};
+
+/// How loaded streams become demonstrations.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Grouping {
+    /// Each topic is a demo; a multi-pose topic gives one per key (TF child
+    /// frame, pose index). The default.
+    #[default]
+    PerTopic,
+    /// Each file is a demo: its first stream in name order (narrow it with a
+    /// frame filter when a file holds several).
+    PerFile,
+    /// Each stream is a continuous recording cut at rest periods.
+    Segmented(SegmentSettings),
+}
+
+/// Applies a grouping to streams in load order (files, then names).
+pub fn group(streams: Vec<RawDemo>, grouping: &Grouping) -> Result<Vec<RawDemo>> {
+    match grouping {
+        Grouping::PerTopic => Ok(streams),
+        Grouping::PerFile => {
+            let mut out: Vec<RawDemo> = Vec::new();
+            for s in streams {
+                if out.last().is_none_or(|d| d.file != s.file) {
+                    let mut demo = s;
+                    demo.name = file_name(&demo.file);
+                    out.push(demo);
+                }
+            }
+            Ok(out)
+        }
+        Grouping::Segmented(settings) => {
+            let mut out = Vec::new();
+            for s in &streams {
+                out.extend(split(s, settings)?);
+            }
+            Ok(out)
+        }
+    }
+}
+
+fn file_name(label: &str) -> String {
+    std::path::Path::new(label)
+        .file_name()
+        .map_or_else(|| label.to_owned(), |n| n.to_string_lossy().into_owned())
+}

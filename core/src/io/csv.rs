@@ -1,0 +1,96 @@
+//! Plain CSV demonstrations: one `t,x,y,z` row per sample, `t` in seconds,
+//! positions in metres, comma separated. A first row whose fields are all
+//! non-numeric is a header and is skipped; blank lines are skipped anywhere.
+
+use crate::demo::{RawDemo, TimeSource};
+use crate::error::{Error, Location, Result};
+
+/// The topic CSV demos carry (there is one demo per file).
+pub const CSV_TOPIC: &str = "csv";
+
+/// The field names of the columns, as errors name them.
+const FIELDS: [&str; 4] = ["t", "position.x", "position.y", "position.z"];
+
+/// Loads a CSV file's text as one demo named by the label's file name
+/// (`file` is the label itself, `topic` is `csv`). Stamps are
+/// `round(t * 1e9)` ns. A bad data row is an [`Error::Decode`] naming its
+/// 0-based data row (header and blank lines not counted) as the sample; a
+/// NaN or infinite value is an [`Error::NonFinite`].
+pub fn load_csv(label: &str, text: &str) -> Result<RawDemo> {
+    let at = || Location::file(label).topic(CSV_TOPIC);
+    let mut stamps_ns = Vec::new();
+    let mut positions = Vec::new();
+    let mut first = true;
+    for (line_index, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() {
+            continue;
+        }
+        let is_first = std::mem::replace(&mut first, false);
+        if is_first && line.split(',').all(|f| f.trim().parse::<f64>().is_err()) {
+            continue;
+        }
+        let row = stamps_ns.len();
+        let values = parse_row(line).map_err(|reason| Error::Decode {
+            at: at().sample(row),
+            reason: format!("line {}: {reason}", line_index + 1),
+        })?;
+        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+            return Err(Error::NonFinite {
+                at: at().sample(row),
+                field: FIELDS[i],
+            });
+        }
+        let t_ns = (values[0] * 1e9).round();
+        // i64 spans about +-292 years of nanoseconds.
+        if t_ns.abs() >= 9.2e18 {
+            return Err(Error::Decode {
+                at: at().sample(row),
+                reason: format!(
+                    "line {}: t = {} s does not fit in nanoseconds",
+                    line_index + 1,
+                    values[0]
+                ),
+            });
+        }
+        stamps_ns.push(t_ns as i64);
+        positions.push([values[1], values[2], values[3]]);
+    }
+    if positions.is_empty() {
+        return Err(Error::Decode {
+            at: at(),
+            reason: "no data rows (expected t,x,y,z per line)".to_owned(),
+        });
+    }
+    let name = std::path::Path::new(label)
+        .file_name()
+        .map_or_else(|| label.to_owned(), |n| n.to_string_lossy().into_owned());
+    Ok(RawDemo {
+        name,
+        file: label.to_owned(),
+        topic: CSV_TOPIC.to_owned(),
+        stamps_ns,
+        positions,
+        time_source: TimeSource::HeaderStamp,
+    })
+}
+
+/// The four numbers of one row, or what is wrong with it.
+fn parse_row(line: &str) -> std::result::Result<[f64; 4], String> {
+    let mut values = [0.0; 4];
+    let mut fields = line.split(',');
+    for (i, value) in values.iter_mut().enumerate() {
+        let field = fields
+            .next()
+            .ok_or_else(|| format!("{} fields, expected 4 (t,x,y,z)", i))?
+            .trim();
+        *value = field
+            .parse()
+            .map_err(|_| format!("{} is {field:?}, not a number", FIELDS[i]))?;
+    }
+    let extra = fields.count();
+    if extra > 0 {
+        return Err(format!("{} fields, expected 4 (t,x,y,z)", 4 + extra));
+    }
+    Ok(values)
+}

@@ -1,0 +1,399 @@
+//! Foxglove pose schemas in protobuf, decoded dynamically: the channel's
+//! FileDescriptorSet is turned into a descriptor pool once, the fields
+//! dmpscope reads are looked up by name once (and their types checked), and
+//! every message is decoded as a [`DynamicMessage`]. Field numbers therefore
+//! come from the file itself, never from code generated here.
+
+use std::borrow::Cow;
+
+use prost_reflect::{
+    DescriptorPool, DynamicMessage, FieldDescriptor, Kind, MessageDescriptor, Value,
+};
+
+use super::foxglove_schemas::{FoxgloveSchema, stamp_ns};
+use super::{ChannelSchema, MessageDecoder, PoseSample};
+
+/// The decoder of a protobuf channel: `None` unless its schema is one of
+/// the Foxglove pose schemas, `Some(Err)` when the FileDescriptorSet is not
+/// usable (not a FileDescriptorSet, missing the message or a field, a field
+/// of the wrong type).
+pub fn decoder(channel: &ChannelSchema<'_>) -> Option<Result<Box<dyn MessageDecoder>, String>> {
+    let schema = FoxgloveSchema::from_name(channel.schema_name)?;
+    Some(ProtoDecoder::new(schema, channel).map(|d| Box::new(d) as Box<dyn MessageDecoder>))
+}
+
+/// The fields of a `google.protobuf.Timestamp` field.
+struct Stamp {
+    field: FieldDescriptor,
+    seconds: FieldDescriptor,
+    nanos: FieldDescriptor,
+}
+
+/// The path to a Vector3-like message and its `x`, `y`, `z` fields.
+struct Position {
+    path: Vec<FieldDescriptor>,
+    xyz: [FieldDescriptor; 3],
+}
+
+/// The fields of a `foxglove.FrameTransform`.
+struct Transform {
+    stamp: Stamp,
+    child: FieldDescriptor,
+    translation: Position,
+}
+
+/// Where the poses are in a message of each schema.
+enum Shape {
+    /// `PoseInFrame`: one stamp, one pose.
+    Single { stamp: Stamp, position: Position },
+    /// `PosesInFrame`: one stamp, a list of poses keyed by index.
+    Indexed {
+        stamp: Stamp,
+        poses: FieldDescriptor,
+        position: Position,
+    },
+    /// `FrameTransform`: one transform keyed by its child frame.
+    Keyed(Transform),
+    /// `FrameTransforms`: a list of transforms keyed by their child frames.
+    KeyedList {
+        transforms: FieldDescriptor,
+        each: Transform,
+    },
+}
+
+struct ProtoDecoder {
+    schema: FoxgloveSchema,
+    message: MessageDescriptor,
+    shape: Shape,
+    /// "0", "1", ...: the keys of pose-array indices, made once.
+    index_keys: Vec<String>,
+}
+
+impl ProtoDecoder {
+    fn new(schema: FoxgloveSchema, channel: &ChannelSchema<'_>) -> Result<Self, String> {
+        if channel.schema_encoding != "protobuf" {
+            return Err(format!(
+                "schema encoding {:?}, expected \"protobuf\" (a FileDescriptorSet)",
+                channel.schema_encoding
+            ));
+        }
+        let pool = DescriptorPool::decode(channel.schema_data)
+            .map_err(|e| format!("not a usable FileDescriptorSet: {e}"))?;
+        let name = schema.name();
+        let message = pool
+            .get_message_by_name(name)
+            .ok_or_else(|| format!("the FileDescriptorSet does not define {name}"))?;
+        let shape = match schema {
+            FoxgloveSchema::PoseInFrame => Shape::Single {
+                stamp: Stamp::resolve(&message)?,
+                position: Position::resolve(&message, &["pose", "position"])?,
+            },
+            FoxgloveSchema::PosesInFrame => {
+                let (poses, pose) = message_field(&message, "poses", true)?;
+                Shape::Indexed {
+                    stamp: Stamp::resolve(&message)?,
+                    poses,
+                    position: Position::resolve(&pose, &["position"])?,
+                }
+            }
+            FoxgloveSchema::FrameTransform => Shape::Keyed(Transform::resolve(&message)?),
+            FoxgloveSchema::FrameTransforms => {
+                let (transforms, each) = message_field(&message, "transforms", true)?;
+                Shape::KeyedList {
+                    transforms,
+                    each: Transform::resolve(&each)?,
+                }
+            }
+        };
+        Ok(Self {
+            schema,
+            message,
+            shape,
+            index_keys: Vec::new(),
+        })
+    }
+}
+
+impl MessageDecoder for ProtoDecoder {
+    fn decode(&mut self, data: &[u8], out: &mut dyn FnMut(PoseSample<'_>)) -> Result<(), String> {
+        let Self {
+            schema,
+            message,
+            shape,
+            index_keys,
+        } = self;
+        let msg = DynamicMessage::decode(message.clone(), data)
+            .map_err(|e| format!("not a valid protobuf {}: {e}", schema.name()))?;
+        match shape {
+            Shape::Single { stamp, position } => out(PoseSample {
+                key: None,
+                stamp_ns: stamp.read(&msg)?,
+                position: position.read(&msg)?,
+            }),
+            Shape::Indexed {
+                stamp,
+                poses,
+                position,
+            } => {
+                let stamp_ns = stamp.read(&msg)?;
+                let list = msg.get_field(poses);
+                let positions = messages(&list, poses)?
+                    .map(|pose| position.read(pose))
+                    .collect::<Result<Vec<_>, String>>()?;
+                while index_keys.len() < positions.len() {
+                    index_keys.push(index_keys.len().to_string());
+                }
+                for (key, position) in index_keys.iter().zip(positions) {
+                    out(PoseSample {
+                        key: Some(Cow::Borrowed(key)),
+                        stamp_ns,
+                        position,
+                    });
+                }
+            }
+            Shape::Keyed(transform) => {
+                let (key, stamp_ns, position) = transform.read(&msg)?;
+                out(PoseSample {
+                    key: Some(key),
+                    stamp_ns,
+                    position,
+                });
+            }
+            Shape::KeyedList { transforms, each } => {
+                let list = msg.get_field(transforms);
+                let samples = messages(&list, transforms)?
+                    .map(|t| each.read(t))
+                    .collect::<Result<Vec<_>, String>>()?;
+                for (key, stamp_ns, position) in samples {
+                    out(PoseSample {
+                        key: Some(key),
+                        stamp_ns,
+                        position,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Stamp {
+    fn resolve(message: &MessageDescriptor) -> Result<Self, String> {
+        let (field, time) = message_field(message, "timestamp", false)?;
+        Ok(Self {
+            field,
+            seconds: scalar_field(&time, "seconds", Scalar::Integer)?,
+            nanos: scalar_field(&time, "nanos", Scalar::Integer)?,
+        })
+    }
+
+    /// The stamp in nanoseconds, `None` when unset or zero.
+    fn read(&self, msg: &DynamicMessage) -> Result<Option<i64>, String> {
+        if !msg.has_field(&self.field) {
+            return Ok(None);
+        }
+        let value = msg.get_field(&self.field);
+        let time = value
+            .as_message()
+            .ok_or_else(|| not_a("message", &self.field))?;
+        let seconds = integer(&time.get_field(&self.seconds), &self.seconds)?;
+        let nanos = integer(&time.get_field(&self.nanos), &self.nanos)?;
+        stamp_ns(seconds, nanos)
+    }
+}
+
+impl Position {
+    fn resolve(message: &MessageDescriptor, path: &[&str]) -> Result<Self, String> {
+        let mut desc = message.clone();
+        let mut fields = Vec::with_capacity(path.len());
+        for name in path {
+            let (field, inner) = message_field(&desc, name, false)?;
+            fields.push(field);
+            desc = inner;
+        }
+        Ok(Self {
+            path: fields,
+            xyz: [
+                scalar_field(&desc, "x", Scalar::Float)?,
+                scalar_field(&desc, "y", Scalar::Float)?,
+                scalar_field(&desc, "z", Scalar::Float)?,
+            ],
+        })
+    }
+
+    /// The position; unset messages on the way give zeros, as in protobuf.
+    fn read(&self, msg: &DynamicMessage) -> Result<[f64; 3], String> {
+        read_xyz(msg, &self.path, &self.xyz)
+    }
+}
+
+fn read_xyz(
+    msg: &DynamicMessage,
+    path: &[FieldDescriptor],
+    xyz: &[FieldDescriptor; 3],
+) -> Result<[f64; 3], String> {
+    match path.split_first() {
+        None => {
+            let mut p = [0.0; 3];
+            for (v, field) in p.iter_mut().zip(xyz) {
+                *v = float(&msg.get_field(field), field)?;
+            }
+            Ok(p)
+        }
+        Some((first, rest)) => {
+            if !msg.has_field(first) {
+                return Ok([0.0; 3]);
+            }
+            let value = msg.get_field(first);
+            let inner = value.as_message().ok_or_else(|| not_a("message", first))?;
+            read_xyz(inner, rest, xyz)
+        }
+    }
+}
+
+impl Transform {
+    fn resolve(message: &MessageDescriptor) -> Result<Self, String> {
+        Ok(Self {
+            stamp: Stamp::resolve(message)?,
+            child: scalar_field(message, "child_frame_id", Scalar::String)?,
+            translation: Position::resolve(message, &["translation"])?,
+        })
+    }
+
+    /// The child frame, stamp and translation of one transform.
+    fn read<'m>(
+        &self,
+        msg: &'m DynamicMessage,
+    ) -> Result<(Cow<'m, str>, Option<i64>, [f64; 3]), String> {
+        let key = match msg.get_field(&self.child) {
+            Cow::Borrowed(Value::String(s)) => Cow::Borrowed(s.as_str()),
+            Cow::Owned(Value::String(s)) => Cow::Owned(s),
+            _ => return Err(not_a("string", &self.child)),
+        };
+        Ok((key, self.stamp.read(msg)?, self.translation.read(msg)?))
+    }
+}
+
+/// The elements of a repeated message field.
+fn messages<'v>(
+    list: &'v Value,
+    field: &FieldDescriptor,
+) -> Result<impl Iterator<Item = &'v DynamicMessage>, String> {
+    let items = list.as_list().ok_or_else(|| not_a("list", field))?;
+    if items.iter().any(|v| v.as_message().is_none()) {
+        return Err(not_a("list of messages", field));
+    }
+    Ok(items.iter().filter_map(Value::as_message))
+}
+
+/// The kinds of scalar fields dmpscope reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Scalar {
+    /// `double` or `float`.
+    Float,
+    /// Any integer type.
+    Integer,
+    /// `string`.
+    String,
+}
+
+/// A message field (repeated or not, as asked) and its message type.
+fn message_field(
+    message: &MessageDescriptor,
+    name: &str,
+    list: bool,
+) -> Result<(FieldDescriptor, MessageDescriptor), String> {
+    let field = find_field(message, name)?;
+    match field.kind() {
+        Kind::Message(inner) if field.is_list() == list && !field.is_map() => Ok((field, inner)),
+        _ => Err(format!(
+            "field {} is {}, expected {}a message",
+            field.full_name(),
+            describe_kind(&field),
+            if list { "a repeated field of " } else { "" }
+        )),
+    }
+}
+
+/// A singular scalar field of the given kind.
+fn scalar_field(
+    message: &MessageDescriptor,
+    name: &str,
+    scalar: Scalar,
+) -> Result<FieldDescriptor, String> {
+    let field = find_field(message, name)?;
+    let fits = match field.kind() {
+        Kind::Double | Kind::Float => scalar == Scalar::Float,
+        Kind::Int32
+        | Kind::Int64
+        | Kind::Uint32
+        | Kind::Uint64
+        | Kind::Sint32
+        | Kind::Sint64
+        | Kind::Fixed32
+        | Kind::Fixed64
+        | Kind::Sfixed32
+        | Kind::Sfixed64 => scalar == Scalar::Integer,
+        Kind::String => scalar == Scalar::String,
+        _ => false,
+    };
+    if fits && !field.is_list() && !field.is_map() {
+        Ok(field)
+    } else {
+        let expected = match scalar {
+            Scalar::Float => "a double",
+            Scalar::Integer => "an integer",
+            Scalar::String => "a string",
+        };
+        Err(format!(
+            "field {} is {}, expected {expected}",
+            field.full_name(),
+            describe_kind(&field)
+        ))
+    }
+}
+
+fn find_field(message: &MessageDescriptor, name: &str) -> Result<FieldDescriptor, String> {
+    message
+        .get_field_by_name(name)
+        .ok_or_else(|| format!("message {} has no field {name}", message.full_name()))
+}
+
+/// A field's type in words, for errors.
+fn describe_kind(field: &FieldDescriptor) -> String {
+    let kind = match field.kind() {
+        Kind::Message(m) => m.full_name().to_owned(),
+        Kind::Enum(e) => e.full_name().to_owned(),
+        other => format!("{other:?}").to_lowercase(),
+    };
+    if field.is_map() {
+        format!("a map ({kind})")
+    } else if field.is_list() {
+        format!("repeated {kind}")
+    } else {
+        kind
+    }
+}
+
+fn not_a(what: &str, field: &FieldDescriptor) -> String {
+    format!("field {} is not a {what}", field.full_name())
+}
+
+fn float(value: &Value, field: &FieldDescriptor) -> Result<f64, String> {
+    match value {
+        Value::F64(v) => Ok(*v),
+        Value::F32(v) => Ok(f64::from(*v)),
+        _ => Err(not_a("number", field)),
+    }
+}
+
+fn integer(value: &Value, field: &FieldDescriptor) -> Result<i64, String> {
+    match value {
+        Value::I64(v) => Ok(*v),
+        Value::I32(v) => Ok(i64::from(*v)),
+        Value::U32(v) => Ok(i64::from(*v)),
+        Value::U64(v) => i64::try_from(*v)
+            .map_err(|_| format!("field {} is out of range: {v}", field.full_name())),
+        _ => Err(not_a("integer", field)),
+    }
+}

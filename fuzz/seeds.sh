@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Writes the fuzz seed corpus with dmpscope's own writers.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=fuzz/corpus/load
+mkdir -p "$out"
+cargo run -q --release -p dmpscope -- gen-sample --demos 2 --out "$out/pose2-zstd.mcap"
+cargo run -q --release -p dmpscope -- gen-sample --demos 3 --uncompressed --out "$out/pose3-plain.mcap"
+cargo run -q --release -p dmpscope -- regen "$out/pose2-zstd.mcap" --dm 10 --km 20 --out "$out/pose-in-frame-json.mcap"
+cargo run -q --release -p dmpscope -- gen-sample --demos 1 --seed 7 --out "$out/pose1.mcap"
+head -c 700 "$out/pose3-plain.mcap" > "$out/truncated.mcap"
+ls -la "$out"
