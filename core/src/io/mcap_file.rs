@@ -107,6 +107,22 @@ struct Channel {
     decoder: Box<dyn MessageDecoder>,
     /// Messages seen, the sample index of errors.
     messages: usize,
+    /// The stream of single-pose messages.
+    unkeyed: Stream,
+    /// The streams of multi-pose messages, by key (looked up without
+    /// allocating; a key is copied once, when first seen).
+    keyed: BTreeMap<String, Stream>,
+}
+
+impl Channel {
+    fn samples(&self) -> usize {
+        self.unkeyed.positions.len()
+            + self
+                .keyed
+                .values()
+                .map(|s| s.positions.len())
+                .sum::<usize>()
+    }
 }
 
 /// Loads the demos of an MCAP stream; `label` names the file in errors and
@@ -129,7 +145,6 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
     let mut reader = LinearReader::new_with_options(reader_options);
     let mut schemas: BTreeMap<u16, (String, String, Vec<u8>)> = BTreeMap::new();
     let mut channels: BTreeMap<u16, Option<Channel>> = BTreeMap::new();
-    let mut streams: BTreeMap<(String, Option<String>), Stream> = BTreeMap::new();
     let mut skipped: Vec<(String, String)> = Vec::new();
     let mut warnings = Vec::new();
     let mut bytes_read: u64 = 0;
@@ -137,8 +152,10 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
     while let Some(event) = reader.next_event() {
         let event = match event {
             Ok(event) => event,
-            Err(mcap::McapError::UnexpectedEof) if pending.is_none() && !streams.is_empty() => {
-                let kept: usize = streams.values().map(|s| s.positions.len()).sum();
+            Err(mcap::McapError::UnexpectedEof)
+                if pending.is_none() && channels.values().flatten().any(|c| c.samples() > 0) =>
+            {
+                let kept: usize = channels.values().flatten().map(Channel::samples).sum();
                 warnings.push(format!(
                     "{label}: the file is truncated (it ends inside a record after {bytes_read} bytes); \
                      kept the {kept} messages of its complete chunks, the rest is lost"
@@ -202,6 +219,8 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
                             topic: ch.topic.clone(),
                             decoder,
                             messages: 0,
+                            unkeyed: Stream::default(),
+                            keyed: BTreeMap::new(),
                         });
                         channels.insert(ch.id, entry);
                     }
@@ -223,27 +242,45 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
                         channel.messages += 1;
                         let log_time = i64::try_from(header.log_time).unwrap_or(i64::MAX);
                         let mut bad: Option<(Option<String>, usize)> = None;
-                        let topic = &channel.topic;
-                        let decoded = channel.decoder.decode(&data, &mut |sample| {
-                            let key = sample.key.map(|k| k.into_owned());
-                            if key.as_ref().is_some_and(|k| {
-                                !options.frames.is_empty() && !options.frames.contains(k)
-                            }) {
-                                return;
+                        let Channel {
+                            topic,
+                            decoder,
+                            unkeyed,
+                            keyed,
+                            ..
+                        } = channel;
+                        let decoded = decoder.decode(&data, &mut |sample| {
+                            if let Some(k) = &sample.key {
+                                if !options.frames.is_empty()
+                                    && !options.frames.iter().any(|f| f == k)
+                                {
+                                    return;
+                                }
                             }
                             if let Some(axis) = sample.position.iter().position(|v| !v.is_finite())
                             {
-                                bad.get_or_insert((key.clone(), axis));
+                                bad.get_or_insert((sample.key.map(|k| k.into_owned()), axis));
                                 return;
                             }
-                            let stream = streams.entry((topic.clone(), key)).or_default();
+                            let stream = match sample.key {
+                                None => &mut *unkeyed,
+                                Some(k) => {
+                                    if !keyed.contains_key(k.as_ref()) {
+                                        keyed.insert(k.clone().into_owned(), Stream::default());
+                                    }
+                                    match keyed.get_mut(k.as_ref()) {
+                                        Some(s) => s,
+                                        None => return,
+                                    }
+                                }
+                            };
                             stream.stamps.push(sample.stamp_ns);
                             stream.log_times.push(log_time);
                             stream.positions.push(options.up.to_z_up(sample.position));
                         });
                         if let Err(reason) = decoded {
                             pending = Some(Error::Decode {
-                                at: at().topic(topic).sample(index),
+                                at: at().topic(topic.as_str()).sample(index),
                                 reason,
                             });
                         } else if let Some((key, axis)) = bad {
@@ -267,10 +304,18 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
     let file_name = std::path::Path::new(label)
         .file_name()
         .map_or_else(|| label.to_owned(), |n| n.to_string_lossy().into_owned());
+    let mut streams: Vec<(String, Option<String>, Stream)> = Vec::new();
+    for channel in channels.into_values().flatten() {
+        streams.push((channel.topic.clone(), None, channel.unkeyed));
+        for (key, stream) in channel.keyed {
+            streams.push((channel.topic.clone(), Some(key), stream));
+        }
+    }
+    streams.sort_by(|a, b| (&a.0, &a.1).cmp(&(&b.0, &b.1)));
     let demos: Vec<RawDemo> = streams
         .into_iter()
-        .filter(|(_, s)| !s.positions.is_empty())
-        .map(|((topic, key), s)| finish_stream(label, &file_name, topic, key, s))
+        .filter(|(_, _, s)| !s.positions.is_empty())
+        .map(|(topic, key, s)| finish_stream(label, &file_name, topic, key, s))
         .collect();
     skipped.sort();
     if demos.is_empty() {
