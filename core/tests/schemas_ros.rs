@@ -1,8 +1,8 @@
-//! The ROS message decoders (ROS 2 CDR and ROS 1) and the CSV loader:
-//! byte layouts checked against hand-built messages, the same demos written
-//! in every supported schema load to identical stamps and positions, TF keys
-//! become demos and can be filtered, bad messages name topic and sample, and
-//! no byte string makes a decoder panic.
+//! The ROS message decoders (ROS 2 CDR and ROS 1): byte layouts checked
+//! against hand-built messages, the same demos written in every supported
+//! schema load to identical stamps and positions, TF keys become demos and
+//! can be filtered, bad messages name topic and sample, and no byte string
+//! makes a decoder panic. The CSV loader is tested in `schemas_csv.rs`.
 
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -10,7 +10,6 @@ use std::io::Cursor;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use dmpscope_core::error::Location;
-use dmpscope_core::io::csv::load_csv;
 use dmpscope_core::io::ros2::StampedTransform;
 use dmpscope_core::io::{
     ChannelSchema, LoadOptions, Loaded, MessageDecoder, PoseSample, decoder_for, load_bytes,
@@ -41,10 +40,8 @@ fn demos(n: usize) -> Vec<Vec<Sample>> {
                     let u = k as f64 / n as f64;
                     let s = d as f64;
                     let stamp = EPOCH + k as i64 * PERIOD + d as i64 * 1000;
-                    (
-                        stamp,
-                        [0.3 * u + s, 0.1 * u * u - 0.2 * s, 0.9 - 0.05 * u + 1e-9],
-                    )
+                    let p = [0.3 * u + s, 0.1 * u * u - 0.2 * s, 0.9 - 0.05 * u];
+                    (stamp, p)
                 })
                 .collect()
         })
@@ -60,43 +57,39 @@ struct Schema {
     message_encoding: &'static str,
 }
 
-const R2_POSE: Schema = Schema {
-    name: "geometry_msgs/msg/PoseStamped",
-    encoding: "ros2msg",
-    text: ros2::POSE_STAMPED_SCHEMA,
-    message_encoding: "cdr",
-};
-const R2_POSE_COV: Schema = Schema {
-    name: "geometry_msgs/msg/PoseWithCovarianceStamped",
-    text: ros2::POSE_WITH_COVARIANCE_STAMPED_SCHEMA,
-    ..R2_POSE
-};
-const R2_POINT: Schema = Schema {
-    name: "geometry_msgs/msg/PointStamped",
-    text: ros2::POINT_STAMPED_SCHEMA,
-    ..R2_POSE
-};
-const R2_TRANSFORM: Schema = Schema {
-    name: "geometry_msgs/msg/TransformStamped",
-    text: ros2::TRANSFORM_STAMPED_SCHEMA,
-    ..R2_POSE
-};
-const R2_TF: Schema = Schema {
-    name: "tf2_msgs/msg/TFMessage",
-    text: ros2::TF_MESSAGE_SCHEMA,
-    ..R2_POSE
-};
-const R1_POSE: Schema = Schema {
-    name: "geometry_msgs/PoseStamped",
-    encoding: "ros1msg",
-    text: ros1::POSE_STAMPED_SCHEMA,
-    message_encoding: "ros1",
-};
-const R1_TF: Schema = Schema {
-    name: "tf2_msgs/TFMessage",
-    text: ros1::TF_MESSAGE_SCHEMA,
-    ..R1_POSE
-};
+/// A ROS 2 (CDR) schema.
+const fn r2(name: &'static str, text: &'static str) -> Schema {
+    Schema {
+        name,
+        encoding: "ros2msg",
+        text,
+        message_encoding: "cdr",
+    }
+}
+
+/// A ROS 1 schema.
+const fn r1(name: &'static str, text: &'static str) -> Schema {
+    Schema {
+        name,
+        encoding: "ros1msg",
+        text,
+        message_encoding: "ros1",
+    }
+}
+
+const R2_POSE: Schema = r2("geometry_msgs/msg/PoseStamped", ros2::POSE_STAMPED_SCHEMA);
+const R2_POSE_COV: Schema = r2(
+    "geometry_msgs/msg/PoseWithCovarianceStamped",
+    ros2::POSE_WITH_COVARIANCE_STAMPED_SCHEMA,
+);
+const R2_POINT: Schema = r2("geometry_msgs/msg/PointStamped", ros2::POINT_STAMPED_SCHEMA);
+const R2_TRANSFORM: Schema = r2(
+    "geometry_msgs/msg/TransformStamped",
+    ros2::TRANSFORM_STAMPED_SCHEMA,
+);
+const R2_TF: Schema = r2("tf2_msgs/msg/TFMessage", ros2::TF_MESSAGE_SCHEMA);
+const R1_POSE: Schema = r1("geometry_msgs/PoseStamped", ros1::POSE_STAMPED_SCHEMA);
+const R1_TF: Schema = r1("tf2_msgs/TFMessage", ros1::TF_MESSAGE_SCHEMA);
 
 /// One channel to write: its topic, schema and `(log_time, bytes)` messages.
 #[derive(Clone)]
@@ -297,54 +290,35 @@ fn le64(v: f64) -> [u8; 8] {
 
 #[test]
 fn ros2_pose_stamped_layout_with_odd_frame_id() {
-    // Frame "world": CDR length 6 (with the NUL), ending at body offset 18,
-    // so 6 bytes of padding put x at offset 24 (8-aligned after the 4-byte
-    // encapsulation header).
-    let mut m = vec![0x00, 0x01, 0x00, 0x00];
-    m.extend(1_700_000_000i32.to_le_bytes()); // body 0: sec
-    m.extend(le32(123_456_789)); // body 4: nanosec
-    m.extend(le32(6)); // body 8: frame_id length
-    m.extend(b"world\0"); // body 12..18
-    m.extend([0; 6]); // body 18..24: padding
-    for v in [1.5, -2.25, 3.0, 0.0, 0.0, 0.0, 1.0] {
-        m.extend(le64(v)); // body 24..80
-    }
-    assert_eq!(m.len(), 84);
     let stamp = 1_700_000_000_123_456_789;
-    let s = ros2::decode_pose_stamped(&m).expect("decode");
-    assert_eq!(
-        (s.key, s.stamp_ns, s.position),
-        (None, Some(stamp), [1.5, -2.25, 3.0])
-    );
-    assert_eq!(
-        ros2::encode_pose_stamped(stamp, "world", [1.5, -2.25, 3.0]),
-        m
-    );
-
-    // Every frame-id length lands the pose on the next 8-byte boundary.
-    for frame in ["", "a", "ab", "abc", "abcd", "abcdefg", "abcdefgh"] {
-        let mut m = vec![0x00, 0x01, 0x00, 0x00];
-        m.extend(7i32.to_le_bytes());
-        m.extend(le32(9));
-        m.extend(le32(frame.len() as u32 + 1));
-        m.extend(frame.as_bytes());
+    let p = [1.5, -2.25, 3.0];
+    for frame in ["world", "", "a", "ab", "abc", "abcd", "abcdefg", "abcdefgh"] {
+        let mut m = vec![0x00, 0x01, 0x00, 0x00]; // little-endian CDR
+        m.extend(1_700_000_000i32.to_le_bytes()); // body 0: sec
+        m.extend(le32(123_456_789)); // body 4: nanosec
+        m.extend(le32(frame.len() as u32 + 1)); // body 8: length with the NUL
+        m.extend(frame.as_bytes()); // body 12..
         m.push(0);
         let body = m.len() - 4;
-        m.resize(4 + body.next_multiple_of(8), 0);
-        for v in [0.25, 0.5, 0.75, 0.0, 0.0, 0.0, 1.0] {
+        m.resize(4 + body.next_multiple_of(8), 0); // float64 alignment
+        for v in [p[0], p[1], p[2], 0.0, 0.0, 0.0, 1.0] {
             m.extend(le64(v));
+        }
+        if frame == "world" {
+            // "world\0" ends at body 18: 6 bytes of padding, x at body 24.
+            assert_eq!(m.len(), 4 + 24 + 56);
+            assert_eq!(
+                (&m[4 + 12..4 + 18], &m[4 + 18..4 + 24]),
+                (&b"world\0"[..], &[0; 6][..])
+            );
         }
         let s = ros2::decode_pose_stamped(&m).expect("decode");
         assert_eq!(
-            (s.stamp_ns, s.position),
-            (Some(7_000_000_009), [0.25, 0.5, 0.75]),
+            (s.key, s.stamp_ns, s.position),
+            (None, Some(stamp), p),
             "{frame:?}"
         );
-        assert_eq!(
-            ros2::encode_pose_stamped(7_000_000_009, frame, [0.25, 0.5, 0.75]),
-            m,
-            "{frame:?}"
-        );
+        assert_eq!(ros2::encode_pose_stamped(stamp, frame, p), m, "{frame:?}");
     }
 }
 
@@ -427,7 +401,7 @@ fn ros2_tf_message_layout_with_two_transforms() {
     // ends at 23 and one byte of padding (not five) precedes the translation.
     let one = ros2::encode_transform_stamped(&ts[0]);
     assert_eq!(one.len(), 4 + 24 + 56);
-    assert_eq!((one[4..27], one[27]), (m[8..31], 0));
+    assert_eq!((&one[4..27], one[27]), (&m[8..31], 0));
     assert_eq!(one[28..], m[36..92]);
     let (got, borrowed) = decode_all(registry(R2_TRANSFORM).as_mut(), &one).expect("decode");
     assert_eq!(got, [(key("h1"), Some(100_000_000_005), [0.1, 0.2, 0.3])]);
@@ -618,6 +592,12 @@ fn decoders_never_panic() {
         rng
     };
     for (schema, valid, count) in cases {
+        // Where the first field starts: after the CDR encapsulation header.
+        let at = if schema.message_encoding == "cdr" {
+            4
+        } else {
+            0
+        };
         let mut decoder = registry(schema);
         let mut run = |data: &[u8]| {
             catch_unwind(AssertUnwindSafe(|| decode_all(decoder.as_mut(), data)))
@@ -635,11 +615,6 @@ fn decoders_never_panic() {
             let len = (next() % 160) as usize;
             let mut data: Vec<u8> = (0..len).map(|_| next() as u8).collect();
             if next() % 2 == 0 && data.len() >= 8 {
-                let at = if schema.message_encoding == "cdr" {
-                    4
-                } else {
-                    0
-                };
                 data[..4].copy_from_slice(&[0, 1, 0, 0]);
                 data[at..at + 4].copy_from_slice(&le32((next() % 4) as u32));
             }
@@ -654,83 +629,9 @@ fn decoders_never_panic() {
         }
         // Huge declared counts and lengths fail without a panic.
         let mut huge = valid.clone();
-        let at = if schema.message_encoding == "cdr" {
-            4
-        } else {
-            0
-        };
         huge[at..at + 4].copy_from_slice(&le32(u32::MAX));
         let _ = run(&huge);
         huge[at + 8..at + 12].copy_from_slice(&le32(u32::MAX));
         let _ = run(&huge);
-    }
-}
-
-// -------------------------------------------------------------------- CSV
-
-#[test]
-fn csv_with_and_without_header() {
-    let plain = "0,0.1,0.2,0.3\n0.01,0.4,0.5,0.6\n\n0.025,0.7,0.8,0.9\n";
-    let headed = "t,x,y,z\r\n\r\n0, 0.1, 0.2, 0.3\r\n0.01,0.4,0.5,0.6\r\n0.025,0.7,0.8,0.9";
-    let a = load_csv("data/reach.csv", plain).expect("plain");
-    let b = load_csv("data/reach.csv", headed).expect("with header");
-    assert_eq!(a, b);
-    assert_eq!(a.name, "reach.csv");
-    assert_eq!(a.file, "data/reach.csv");
-    assert_eq!(a.topic, "csv");
-    assert_eq!(a.time_source, TimeSource::HeaderStamp);
-    assert_eq!(a.stamps_ns, [0, 10_000_000, 25_000_000]);
-    assert_eq!(
-        a.positions,
-        [[0.1, 0.2, 0.3], [0.4, 0.5, 0.6], [0.7, 0.8, 0.9]]
-    );
-    // Stamps are rounded, not truncated, and may be absolute.
-    let c = load_csv("c.csv", "1700000000.123456,0,0,0\n0.0000000029,1,1,1\n").expect("load");
-    assert_eq!(c.stamps_ns[1], 3);
-    assert!(
-        (c.stamps_ns[0] - 1_700_000_000_123_456_000).abs() < 512,
-        "{}",
-        c.stamps_ns[0]
-    );
-}
-
-#[test]
-fn csv_errors_name_the_row() {
-    let cases: [(&str, usize, &str); 5] = [
-        ("0,1,2,3\n0.01,1,2\n", 1, "line 2"),
-        ("t,x,y,z\n\n0,1,2,3\n0.01,1,abc,3\n", 1, "line 4"),
-        ("0,1,abc,3\n", 0, "line 1"),
-        ("0,1,2,3\n1,2,3,4\n2,3,4,5,6\n", 2, "5 fields"),
-        ("0,1,2,3\n1e300,0,0,0\n", 1, "does not fit"),
-    ];
-    for (text, row, part) in cases {
-        let err = load_csv("bad.csv", text).expect_err(text);
-        let Error::Decode { at, reason } = &err else {
-            panic!("{text:?}: expected a decode error, got {err:?}");
-        };
-        assert_eq!(
-            at,
-            &Location::file("bad.csv").topic("csv").sample(row),
-            "{text:?}: {reason}"
-        );
-        assert!(err.to_string().contains(part), "{err}");
-    }
-    for (text, row, field) in [
-        ("0,1,2,3\n0.01,NaN,2,3\n", 1, "position.x"),
-        ("0,1,2,3\n0.01,1,2,-inf\n", 1, "position.z"),
-        ("inf,1,2,3\n", 0, "t"),
-    ] {
-        let err = load_csv("nan.csv", text).expect_err(text);
-        let Error::NonFinite { at, field: f } = &err else {
-            panic!("{text:?}: expected a non-finite error, got {err:?}");
-        };
-        assert_eq!(
-            (at, *f),
-            (&Location::file("nan.csv").topic("csv").sample(row), field)
-        );
-    }
-    for text in ["", "t,x,y,z\n", "\n\n"] {
-        let err = load_csv("empty.csv", text).expect_err(text);
-        assert!(matches!(err, Error::Decode { .. }), "{err:?}");
     }
 }

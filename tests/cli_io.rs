@@ -1,0 +1,196 @@
+//! End-to-end tests of the recording paths at the process boundary:
+//! export (MCAP that loads back, DMP JSON), segmentation of one take, the
+//! axis convention and CSV input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn sample() -> String {
+    repo().join("assets/reach10.mcap").display().to_string()
+}
+
+fn dmpscope(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_dmpscope"))
+        .args(args)
+        .current_dir(repo())
+        .output()
+        .expect("run dmpscope")
+}
+
+fn ok(args: &[&str]) -> String {
+    let out = dmpscope(args);
+    assert!(
+        out.status.success(),
+        "dmpscope {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+fn tmp(name: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("dmpscope-cli-io-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir.join(name).display().to_string()
+}
+
+#[test]
+fn regen_exports_an_mcap_that_loads_back_as_demos_and_paths() {
+    let out = tmp("export.mcap");
+    ok(&[
+        "regen",
+        &sample(),
+        "--dm",
+        "25",
+        "--km",
+        "156.25",
+        "--out",
+        &out,
+    ]);
+    let info: Value = serde_json::from_str(&ok(&["info", "--json", &out])).expect("json");
+    let names: Vec<&str> = info
+        .as_array()
+        .expect("list")
+        .iter()
+        .map(|d| d["name"].as_str().expect("name"))
+        .collect();
+    assert_eq!(names.len(), 20, "{names:?}");
+    assert!(
+        names.contains(&"export.mcap:/demo/reach10_demo_01"),
+        "{names:?}"
+    );
+    assert!(
+        names.contains(&"export.mcap:/regen/reach10_demo_10"),
+        "{names:?}"
+    );
+    let bytes = std::fs::read(&out).expect("export");
+    let text = String::from_utf8_lossy(&bytes);
+    for needle in ["foxglove.PoseInFrame", "jsonschema", "dmpscope", "156.25"] {
+        assert!(text.contains(needle), "export lacks {needle}");
+    }
+}
+
+#[test]
+fn regen_exports_gains_and_weights_as_json() {
+    let out = tmp("dmp.json");
+    ok(&[
+        "regen",
+        &sample(),
+        "--dm",
+        "10.73",
+        "--km",
+        "20.71",
+        "--out",
+        &out,
+    ]);
+    let doc: Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).expect("json")).expect("valid");
+    assert_eq!(doc["dm"].as_f64(), Some(10.73));
+    assert_eq!(doc["km"].as_f64(), Some(20.71));
+    assert_eq!(doc["centres"].as_array().expect("centres").len(), 100);
+    let demos = doc["demos"].as_array().expect("demos");
+    assert_eq!(demos.len(), 10);
+    for axis in 0..3 {
+        assert_eq!(
+            demos[0]["weights"][axis].as_array().expect("weights").len(),
+            100
+        );
+    }
+}
+
+#[test]
+fn one_take_is_segmented_into_its_reaches() {
+    // Ten demos written on one topic, back to back in time, make one take.
+    let take = tmp("take.mcap");
+    let csv = tmp("take.csv");
+    ok(&[
+        "regen",
+        &sample(),
+        "--dm",
+        "25",
+        "--km",
+        "156.25",
+        "--out",
+        &csv,
+    ]);
+    // Build a CSV take from the regenerated paths of demo 1..3 with rests.
+    let body = std::fs::read_to_string(&csv).expect("csv");
+    let mut rows = vec!["t,x,y,z".to_owned()];
+    let mut t = 0.0;
+    for demo in [
+        "reach10.mcap:/demo_01",
+        "reach10.mcap:/demo_02",
+        "reach10.mcap:/demo_03",
+    ] {
+        let path: Vec<Vec<f64>> = body
+            .lines()
+            .filter(|l| l.starts_with(demo))
+            .map(|l| {
+                l.split(',')
+                    .skip(3)
+                    .take(3)
+                    .map(|v| v.parse().expect("number"))
+                    .collect()
+            })
+            .step_by(10)
+            .collect();
+        let rest = |p: &Vec<f64>, t: &mut f64, rows: &mut Vec<String>| {
+            for _ in 0..60 {
+                rows.push(format!("{t:.6},{},{},{}", p[0], p[1], p[2]));
+                *t += 0.011;
+            }
+        };
+        rest(&path[0], &mut t, &mut rows);
+        for p in &path {
+            rows.push(format!("{t:.6},{},{},{}", p[0], p[1], p[2]));
+            t += 0.011;
+        }
+        rest(&path[path.len() - 1], &mut t, &mut rows);
+    }
+    std::fs::write(&take, rows.join("\n")).expect("write take");
+    let take_csv = take.replace(".mcap", "-take.csv");
+    std::fs::rename(&take, &take_csv).expect("rename");
+    let listing = ok(&["info", "--segment", &take_csv]);
+    assert!(listing.contains("(3 segments)"), "{listing}");
+    let demos: Value =
+        serde_json::from_str(&ok(&["info", "--json", "--demos", "segment", &take_csv]))
+            .expect("json");
+    let names: Vec<&str> = demos
+        .as_array()
+        .expect("list")
+        .iter()
+        .map(|d| d["name"].as_str().expect("name"))
+        .collect();
+    assert_eq!(names.len(), 3, "{names:?}");
+    assert!(names[2].ends_with("#3"), "{names:?}");
+    // And the three segments are demos the method runs on.
+    let extract = ok(&["extract", "--demos", "segment", &take_csv, "--grid", "8"]);
+    assert!(extract.starts_with("(M:D:K) = 1 : "), "{extract}");
+}
+
+#[test]
+fn y_up_recordings_are_turned_to_z_up() {
+    let z_up: Value = serde_json::from_str(&ok(&["info", "--json", &sample()])).expect("json");
+    let y_up: Value =
+        serde_json::from_str(&ok(&["info", "--json", "--y-up", &sample()])).expect("json");
+    let (a, b) = (&z_up[0]["start"], &y_up[0]["start"]);
+    // (x, y, z) y-up -> (-z, -x, y) z-up.
+    assert_eq!(b[0].as_f64(), a[2].as_f64().map(|v| -v));
+    assert_eq!(b[1].as_f64(), a[0].as_f64().map(|v| -v));
+    assert_eq!(b[2].as_f64(), a[1].as_f64());
+}
+
+#[test]
+fn a_bad_csv_row_is_named() {
+    let bad = tmp("bad.csv");
+    std::fs::write(&bad, "t,x,y,z\n0,0,0,0\n0.01,0.1,oops,0\n").expect("write");
+    let out = dmpscope(&["info", &bad]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bad.csv") && err.contains("sample 1"), "{err}");
+}
