@@ -380,3 +380,35 @@ fn zero_or_missing_stamps_fall_back_to_log_time() {
         samples.iter().map(|s| s.0).collect::<Vec<_>>()
     );
 }
+
+/// Found by the fuzzer: a record inside an uncompressed chunk that declares
+/// more bytes than the chunk has left (but less than the record limit) made
+/// mcap's reader underflow. It is an error naming the file, for every record
+/// of the chunk and every overrun.
+#[test]
+fn a_record_overrunning_its_chunk_is_an_error() {
+    let bytes = mcap_of(&[("/a", &reach(30))], false);
+    let (_, body, records_at, records_len) = first_chunk(&bytes);
+    let mut offset = records_at;
+    let mut patched = 0;
+    while offset + 9 <= records_at + records_len {
+        let len = u64::from_le_bytes(bytes[offset + 1..offset + 9].try_into().expect("8")) as usize;
+        let left = records_at + records_len - offset - 9;
+        for declared in [left + 1, left + 100, left + 4096] {
+            let mut bad = bytes.clone();
+            bad[offset + 1..offset + 9].copy_from_slice(&(declared as u64).to_le_bytes());
+            let label = format!("overrun-{offset}-{declared}.mcap");
+            let (err, text) = load_err(&label, &bad);
+            assert!(matches!(err, Error::Mcap { .. }), "{err:?}");
+            assert!(text.contains("CRC"), "{text}");
+            // With the chunk's CRC unset (0), the walk itself must catch it.
+            bad[body + 24..body + 28].copy_from_slice(&[0; 4]);
+            let (err, text) = load_err(&label, &bad);
+            assert!(matches!(err, Error::Mcap { .. }), "{err:?}");
+            assert!(text.contains("inside a chunk declares"), "{text}");
+            patched += 1;
+        }
+        offset += 9 + len;
+    }
+    assert!(patched > 30, "only {patched} records patched");
+}

@@ -12,6 +12,8 @@ fn csv_with_and_without_header() {
     let a = load_csv("data/reach.csv", plain).expect("plain");
     let b = load_csv("data/reach.csv", headed).expect("with header");
     assert_eq!(a, b);
+    let bom = format!("\u{feff}{plain}");
+    assert_eq!(load_csv("data/reach.csv", &bom).expect("with BOM"), a);
     assert_eq!(a.name, "reach.csv");
     assert_eq!(a.file, "data/reach.csv");
     assert_eq!(a.topic, "csv");

@@ -32,6 +32,10 @@ use FoxgloveSchema::{FrameTransform, FrameTransforms, PoseInFrame, PosesInFrame}
 
 /// A sample as the writers take it: `(stamp_ns, position)`.
 type Sample = (i64, [f64; 3]);
+/// Encoded messages, each `(log_time_ns, bytes)`.
+type Messages = Vec<(i64, Vec<u8>)>;
+/// A decoded pose with its key owned: `(key, stamp_ns, position)`.
+type Decoded = (Option<String>, Option<i64>, [f64; 3]);
 
 /// The first stamp: seconds and a nanosecond part that needs all its digits.
 const EPOCH: i64 = 1_700_000_000_123_456_789;
@@ -63,20 +67,19 @@ fn demos() -> Vec<Vec<Sample>> {
         .collect()
 }
 
-/// The ROS 2 `PoseStamped` file of the demos, topics `/a`, `/b`, `/c`.
-fn ros2_file(demos: &[Vec<Sample>]) -> Vec<u8> {
-    let topics: Vec<TopicSamples<'_>> = ["/a", "/b", "/c"]
-        .iter()
-        .zip(demos)
-        .map(|(topic, samples)| TopicSamples {
-            topic,
-            frame_id: "world",
-            samples,
-        })
-        .collect();
-    write_pose_stamped(Cursor::new(Vec::new()), &topics, true)
-        .expect("write ros2")
-        .into_inner()
+/// The demos as writer topics `/a`, `/b`, `/c` in frame "world".
+fn topics(demos: &[Vec<Sample>]) -> Vec<TopicSamples<'_>> {
+    let names = ["/a", "/b", "/c"];
+    let each = |(topic, samples)| TopicSamples {
+        topic,
+        frame_id: "world",
+        samples,
+    };
+    names
+        .into_iter()
+        .zip(demos.iter().map(Vec::as_slice))
+        .map(each)
+        .collect()
 }
 
 fn pose_in_frame(enc: FoxgloveEncoding, stamp: i64, p: [f64; 3]) -> Vec<u8> {
@@ -113,16 +116,17 @@ fn foxglove_file(schema: FoxgloveSchema, enc: FoxgloveEncoding, demos: &[Vec<Sam
         child_frame_id: CHILDREN[j],
         translation: demos[j][k].1,
     };
-    let topics: Vec<(&str, Vec<(i64, Vec<u8>)>)> = match schema {
+    let topics: Vec<(&str, Messages)> = match schema {
         PoseInFrame => ["/a", "/b", "/c"]
             .into_iter()
             .zip(demos)
             .map(|(topic, d)| {
-                let msgs = d
-                    .iter()
-                    .map(|&(t, p)| (t, pose_in_frame(enc, t, p)))
-                    .collect();
-                (topic, msgs)
+                (
+                    topic,
+                    d.iter()
+                        .map(|&(t, p)| (t, pose_in_frame(enc, t, p)))
+                        .collect(),
+                )
             })
             .collect(),
         PosesInFrame => {
@@ -163,20 +167,14 @@ fn foxglove_file(schema: FoxgloveSchema, enc: FoxgloveEncoding, demos: &[Vec<Sam
 
 /// An MCAP file with one topic `/hand` of the given schema record and
 /// messages (log times 1, 2, ...).
-fn raw_file(
-    name: &str,
-    schema_enc: &str,
-    schema: &[u8],
-    msg_enc: &str,
-    msgs: &[Vec<u8>],
-) -> Vec<u8> {
+fn raw_file(name: &str, s_enc: &str, schema: &[u8], m_enc: &str, msgs: &[Vec<u8>]) -> Vec<u8> {
     let mut w = mcap::WriteOptions::new()
         .compression(None)
         .create(Cursor::new(Vec::new()))
         .expect("writer");
-    let schema_id = w.add_schema(name, schema_enc, schema).expect("schema");
+    let schema_id = w.add_schema(name, s_enc, schema).expect("schema");
     let channel_id = w
-        .add_channel(schema_id, "/hand", msg_enc, &BTreeMap::new())
+        .add_channel(schema_id, "/hand", m_enc, &BTreeMap::new())
         .expect("channel");
     for (i, data) in msgs.iter().enumerate() {
         let header = MessageHeader {
@@ -244,10 +242,7 @@ fn decoder(schema: FoxgloveSchema, enc: FoxgloveEncoding) -> Box<dyn MessageDeco
 }
 
 /// Everything one message decodes to, keys owned.
-fn decode_all(
-    d: &mut dyn MessageDecoder,
-    data: &[u8],
-) -> Result<Vec<(Option<String>, Option<i64>, [f64; 3])>, String> {
+fn decode_all(d: &mut dyn MessageDecoder, data: &[u8]) -> Result<Vec<Decoded>, String> {
     let mut got = Vec::new();
     d.decode(data, &mut |s: PoseSample<'_>| {
         got.push((s.key.map(|k| k.into_owned()), s.stamp_ns, s.position));
@@ -259,21 +254,12 @@ fn decode_all(
 fn assert_demos(label: &str, got: &[RawDemo], want: &[Vec<Sample>], suffixes: &[&str]) {
     assert_eq!(got.len(), want.len(), "{label}: demo count");
     for ((g, w), suffix) in got.iter().zip(want).zip(suffixes) {
-        assert!(
-            g.name.ends_with(suffix),
-            "{label}: {} is not *{suffix}",
-            g.name
-        );
-        assert_eq!(
-            g.time_source,
-            TimeSource::HeaderStamp,
-            "{label}: {}",
-            g.name
-        );
-        let stamps: Vec<i64> = w.iter().map(|s| s.0).collect();
-        let positions: Vec<[f64; 3]> = w.iter().map(|s| s.1).collect();
-        assert_eq!(g.stamps_ns, stamps, "{label}: stamps of {}", g.name);
-        assert_eq!(g.positions, positions, "{label}: positions of {}", g.name);
+        let name = &g.name;
+        assert!(name.ends_with(suffix), "{label}: {name} is not *{suffix}");
+        assert_eq!(g.time_source, TimeSource::HeaderStamp, "{label}: {name}");
+        let (stamps, positions): (Vec<i64>, Vec<[f64; 3]>) = w.iter().copied().unzip();
+        assert_eq!(g.stamps_ns, stamps, "{label}: stamps of {name}");
+        assert_eq!(g.positions, positions, "{label}: positions of {name}");
     }
 }
 
@@ -353,11 +339,8 @@ fn descriptor_sets_have_foxgloves_field_numbers() {
             assert_eq!(&got, want, "{schema:?}: {}", desc.full_name());
             seen += 1;
         }
-        assert_eq!(
-            seen,
-            if schema == FrameTransform { 4 } else { 5 },
-            "{schema:?}"
-        );
+        let files = if schema == FrameTransform { 4 } else { 5 };
+        assert_eq!(seen, files, "{schema:?}");
     }
     let json: serde_json::Value =
         serde_json::from_str(&json_schema(PosesInFrame)).expect("JSON Schema is JSON");
@@ -378,9 +361,10 @@ fn hand_assembled_protobuf_decodes_by_field_number() {
     let position = [double(0x09, x), double(0x11, y), double(0x19, z)].concat();
     let orientation = double(0x21, 1.0);
     let pose = [len_field(0x0A, &position), len_field(0x12, &orientation)].concat();
+    let frame = len_field(0x12, b"world");
     let message = [
         len_field(0x0A, &time),
-        len_field(0x12, b"world"),
+        frame.clone(),
         len_field(0x1A, &pose),
     ]
     .concat();
@@ -400,13 +384,9 @@ fn hand_assembled_protobuf_decodes_by_field_number() {
     assert_eq!(decode_all(d.as_mut(), &reordered), Ok(want));
 
     // FrameTransform: 3 child_frame_id, 4 translation, 2 parent; no timestamp.
-    let transform = [
-        len_field(0x12, b"world"),
-        len_field(0x1A, b"hand"),
-        len_field(0x22, &[double(0x09, x), double(0x19, z)].concat()),
-        len_field(0x2A, &orientation),
-    ]
-    .concat();
+    let translation = len_field(0x22, &[double(0x09, x), double(0x19, z)].concat());
+    let child = len_field(0x1A, b"hand");
+    let transform = [frame, child, translation, len_field(0x2A, &orientation)].concat();
     let mut d = decoder(FrameTransform, Protobuf);
     let got = decode_all(d.as_mut(), &transform);
     assert_eq!(got, Ok(vec![(Some("hand".into()), None, [x, 0.0, z])]));
@@ -415,12 +395,7 @@ fn hand_assembled_protobuf_decodes_by_field_number() {
     let mut d = decoder(FrameTransforms, Protobuf);
     assert_eq!(decode_all(d.as_mut(), &list).map(|v| v.len()), Ok(2));
     // PosesInFrame: 3 poses (repeated); keys are the indices.
-    let poses = [
-        len_field(0x1A, &pose),
-        len_field(0x1A, &[]),
-        len_field(0x1A, &pose),
-    ]
-    .concat();
+    let poses = [&pose[..], &[], &pose].map(|p| len_field(0x1A, p)).concat();
     let mut d = decoder(PosesInFrame, Protobuf);
     let got = decode_all(d.as_mut(), &poses).expect("decode");
     let keys: Vec<_> = got.iter().map(|s| s.0.clone().expect("key")).collect();
@@ -432,60 +407,39 @@ fn hand_assembled_protobuf_decodes_by_field_number() {
     let text = br#"{"timestamp":{"sec":1700000000,"nsec":123456789},"frame_id":"world",
         "pose":{"position":{"x":0.125,"y":null},"orientation":{"w":1}}}"#;
     let mut d = decoder(PoseInFrame, Json);
-    let got = decode_all(d.as_mut(), text);
-    assert_eq!(
-        got,
-        Ok(vec![(None, Some(1_700_000_000_123_456_789), [x, 0.0, 0.0])])
-    );
+    let want = vec![(None, Some(1_700_000_000_123_456_789), [x, 0.0, 0.0])];
+    assert_eq!(decode_all(d.as_mut(), text), Ok(want));
 }
 
 #[test]
 fn every_schema_and_encoding_loads_like_ros2_pose_stamped() {
     let demos = demos();
-    let ros2 = load("ros2.mcap", &ros2_file(&demos));
-    assert_demos("ros2", &ros2.demos, &demos, &[":/a", ":/b", ":/c"]);
+    let abc = [":/a", ":/b", ":/c"];
+    let ros2 = write_pose_stamped(Cursor::new(Vec::new()), &topics(&demos), true);
+    let ros2 = load("ros2.mcap", &ros2.expect("write ros2").into_inner());
+    assert_demos("ros2", &ros2.demos, &demos, &abc);
     for schema in FoxgloveSchema::ALL {
         for enc in [Protobuf, Json] {
             let label = format!("{schema:?}-{enc:?}.mcap");
             let loaded = load(&label, &foxglove_file(schema, enc, &demos));
-            assert!(
-                loaded.skipped.is_empty() && loaded.warnings.is_empty(),
-                "{label}"
-            );
+            let clean = loaded.skipped.is_empty() && loaded.warnings.is_empty();
+            assert!(clean, "{label}: {loaded:?}");
             let suffixes: &[&str] = match schema {
-                PoseInFrame => &[":/a", ":/b", ":/c"],
+                PoseInFrame => &abc,
                 PosesInFrame => &[":/poses:0", ":/poses:1", ":/poses:2"],
                 _ => &[":/tf:hand", ":/tf:head", ":/tf:tool"],
             };
             assert_demos(&label, &loaded.demos, &demos, suffixes);
             for (g, r) in loaded.demos.iter().zip(&ros2.demos) {
-                assert_eq!(
-                    (&g.stamps_ns, &g.positions),
-                    (&r.stamps_ns, &r.positions),
-                    "{label}"
-                );
+                let same = g.stamps_ns == r.stamps_ns && g.positions == r.positions;
+                assert!(same, "{label}: {} differs from {}", g.name, r.name);
             }
         }
     }
     // The JSON PoseInFrame writer the app exports with.
-    let topics: Vec<TopicSamples<'_>> = ["/a", "/b", "/c"]
-        .iter()
-        .zip(&demos)
-        .map(|(topic, samples)| TopicSamples {
-            topic,
-            frame_id: "world",
-            samples,
-        })
-        .collect();
-    let bytes = write_pose_in_frame_json(Cursor::new(Vec::new()), &topics, false)
-        .expect("write")
-        .into_inner();
-    assert_demos(
-        "export",
-        &load("export.mcap", &bytes).demos,
-        &demos,
-        &[":/a", ":/b", ":/c"],
-    );
+    let bytes = write_pose_in_frame_json(Cursor::new(Vec::new()), &topics(&demos), false);
+    let export = load("export.mcap", &bytes.expect("write").into_inner());
+    assert_demos("export", &export.demos, &demos, &abc);
 }
 
 #[test]
@@ -499,24 +453,15 @@ fn poses_in_frame_with_three_poses_gives_three_demos() {
                 poses_in_frame(enc, EPOCH + k * PERIOD, &shifted)
             })
             .collect();
-        let schema = enc.schema_data(PosesInFrame);
-        let bytes = raw_file(
-            "foxglove.PosesInFrame",
-            enc.schema_encoding(),
-            &schema,
-            enc.message_encoding(),
-            &msgs,
-        );
+        let bytes = fox_file(PosesInFrame, enc, &msgs);
         let loaded = load("poses.mcap", &bytes);
         let names: Vec<&str> = loaded.demos.iter().map(|d| d.name.as_str()).collect();
-        assert_eq!(
-            names,
-            [
-                "poses.mcap:/hand:0",
-                "poses.mcap:/hand:1",
-                "poses.mcap:/hand:2"
-            ]
-        );
+        let want = [
+            "poses.mcap:/hand:0",
+            "poses.mcap:/hand:1",
+            "poses.mcap:/hand:2",
+        ];
+        assert_eq!(names, want, "{enc:?}");
         for (d, p) in loaded.demos.iter().zip(ps) {
             assert_eq!(d.positions.len(), 10);
             assert_eq!(d.positions[9], [p[0] + 9.0, p[1], p[2]]);
@@ -536,20 +481,12 @@ fn poses_in_frame_with_three_poses_gives_three_demos() {
 #[test]
 fn zero_or_missing_timestamp_falls_back_to_log_time() {
     for enc in [Protobuf, Json] {
-        let mut msgs = vec![pose_in_frame(enc, 0, [1.0, 0.0, 0.0])];
-        msgs.push(match enc {
+        let empty = match enc {
             Protobuf => Vec::new(),
             Json => b"{}".to_vec(),
-        });
-        let schema = enc.schema_data(PoseInFrame);
-        let bytes = raw_file(
-            "foxglove.PoseInFrame",
-            enc.schema_encoding(),
-            &schema,
-            enc.message_encoding(),
-            &msgs,
-        );
-        let d = &load("zero.mcap", &bytes).demos[0];
+        };
+        let msgs = [pose_in_frame(enc, 0, [1.0, 0.0, 0.0]), empty];
+        let d = &load("zero.mcap", &fox_file(PoseInFrame, enc, &msgs)).demos[0];
         assert_eq!(d.time_source, TimeSource::LogTime, "{enc:?}");
         assert_eq!(d.stamps_ns, [1, 2]);
         assert_eq!(d.positions, [[1.0, 0.0, 0.0], [0.0; 3]]);
@@ -559,8 +496,7 @@ fn zero_or_missing_timestamp_falls_back_to_log_time() {
 #[test]
 fn other_foxglove_schemas_are_skipped() {
     let bytes = raw_file("foxglove.Log", "protobuf", b"", "protobuf", &[vec![1, 2]]);
-    let (err, _) = load_err("log.mcap", &bytes);
-    match err {
+    match load_err("log.mcap", &bytes).0 {
         Error::NoDemos { skipped, .. } => {
             assert_eq!(skipped, [("/hand".to_owned(), "foxglove.Log".to_owned())]);
         }
@@ -574,26 +510,17 @@ fn unusable_descriptor_set_names_the_topic() {
     // Without foxglove/Pose.proto, which PoseInFrame.proto imports.
     let mut missing = descriptor_set(PoseInFrame);
     missing.file.retain(|f| f.name() != "foxglove/Pose.proto");
-    // Vector3.x as a string.
+    // Vector3.x as a string (type 9).
     let mut retyped = descriptor_set(PoseInFrame);
-    for file in &mut retyped.file {
-        for m in &mut file.message_type {
-            if m.name() == "Vector3" {
-                m.field[0].r#type = Some(9);
-            }
+    for m in retyped.file.iter_mut().flat_map(|f| &mut f.message_type) {
+        if m.name() == "Vector3" {
+            m.field[0].r#type = Some(9);
         }
     }
+    let unusable = "not a usable FileDescriptorSet";
     let cases: Vec<(&str, Vec<u8>, &str)> = vec![
-        (
-            "protobuf",
-            b"\x0a\xff\xff\xff".to_vec(),
-            "not a usable FileDescriptorSet",
-        ),
-        (
-            "protobuf",
-            missing.encode_to_vec(),
-            "not a usable FileDescriptorSet",
-        ),
+        ("protobuf", b"\x0a\xff\xff\xff".to_vec(), unusable),
+        ("protobuf", missing.encode_to_vec(), unusable),
         (
             "protobuf",
             retyped.encode_to_vec(),
@@ -610,22 +537,13 @@ fn unusable_descriptor_set_names_the_topic() {
             "expected \"protobuf\"",
         ),
     ];
-    for (encoding, data, reason) in cases {
-        let bytes = raw_file(
-            "foxglove.PoseInFrame",
-            encoding,
-            &data,
-            "protobuf",
-            &[msg.clone()],
-        );
+    for (schema_enc, data, reason) in cases {
+        let msgs = [msg.clone()];
+        let bytes = raw_file("foxglove.PoseInFrame", schema_enc, &data, "protobuf", &msgs);
         let (err, text) = load_err("fds.mcap", &bytes);
         assert!(matches!(err, Error::Decode { .. }), "{err:?}");
-        for part in [
-            "fds.mcap",
-            "topic /hand",
-            "unusable schema foxglove.PoseInFrame",
-            reason,
-        ] {
+        let schema = "unusable schema foxglove.PoseInFrame";
+        for part in ["fds.mcap", "topic /hand", schema, reason] {
             assert!(text.contains(part), "{text:?} lacks {part:?}");
         }
     }
@@ -633,24 +551,15 @@ fn unusable_descriptor_set_names_the_topic() {
 
 #[test]
 fn malformed_messages_name_topic_and_sample() {
-    let good_proto = pose_in_frame(Protobuf, EPOCH, [1.0, 2.0, 3.0]);
-    let good_json = pose_in_frame(Json, EPOCH, [1.0, 2.0, 3.0]);
+    let good = valid(PoseInFrame, Protobuf);
+    let truncated = good[..good.len() - 3].to_vec();
     let mut huge_time = vec![0x08];
     huge_time.extend(varint(i64::MAX as u64));
-    let cases: Vec<(FoxgloveSchema, FoxgloveEncoding, Vec<u8>, &str)> = vec![
-        (
-            PoseInFrame,
-            Protobuf,
-            good_proto[..good_proto.len() - 3].to_vec(),
-            "not a valid protobuf",
-        ),
+    let invalid = "not a valid protobuf";
+    let mut cases: Vec<(FoxgloveSchema, FoxgloveEncoding, Vec<u8>, &str)> = vec![
+        (PoseInFrame, Protobuf, truncated, invalid),
         // Field 3 (pose) with the varint wire type.
-        (
-            PoseInFrame,
-            Protobuf,
-            vec![0x18, 0x01],
-            "not a valid protobuf",
-        ),
+        (PoseInFrame, Protobuf, vec![0x18, 0x01], invalid),
         (
             PoseInFrame,
             Protobuf,
@@ -658,73 +567,44 @@ fn malformed_messages_name_topic_and_sample() {
             "out of range",
         ),
         (
-            PoseInFrame,
-            Json,
-            good_json[..good_json.len() - 1].to_vec(),
-            "not valid JSON",
+            FrameTransforms,
+            Protobuf,
+            vec![0x0A, 0x05, 0x1A, 0x09],
+            invalid,
         ),
+    ];
+    let json_cases: [(FoxgloveSchema, &str, &str); 7] = [
+        (PoseInFrame, r#"{"pose": {"#, "not valid JSON"),
+        (PoseInFrame, "[1, 2]", "must be a JSON object"),
+        (PoseInFrame, r#"{"pose": 5}"#, "pose is not an object"),
         (
             PoseInFrame,
-            Json,
-            b"[1, 2]".to_vec(),
-            "must be a JSON object",
-        ),
-        (
-            PoseInFrame,
-            Json,
-            br#"{"pose": 5}"#.to_vec(),
-            "pose is not an object",
-        ),
-        (
-            PoseInFrame,
-            Json,
-            br#"{"pose": {"position": {"y": "2"}}}"#.to_vec(),
+            r#"{"pose": {"position": {"y": "2"}}}"#,
             "pose.position.y is not a number",
         ),
         (
             PoseInFrame,
-            Json,
-            br#"{"timestamp": {"sec": 1.5}}"#.to_vec(),
+            r#"{"timestamp": {"sec": 1.5}}"#,
             "timestamp.sec is not an integer",
         ),
         (
             PosesInFrame,
-            Json,
-            br#"{"poses": [{}, 3]}"#.to_vec(),
+            r#"{"poses": [{}, 3]}"#,
             "poses[1] is not an object",
         ),
         (
             FrameTransforms,
-            Json,
-            br#"{"transforms": [{}, {"child_frame_id": 4}]}"#.to_vec(),
+            r#"{"transforms": [{}, {"child_frame_id": 4}]}"#,
             "transforms[1].child_frame_id is not a string",
         ),
     ];
+    for (schema, text, reason) in json_cases {
+        cases.push((schema, Json, text.as_bytes().to_vec(), reason));
+    }
     for (schema, enc, bad, reason) in cases {
-        let good = match schema {
-            PoseInFrame => pose_in_frame(enc, EPOCH, [1.0, 2.0, 3.0]),
-            PosesInFrame => poses_in_frame(enc, EPOCH, &[[1.0, 2.0, 3.0]]),
-            _ => frame_transforms(
-                enc,
-                &[Transform {
-                    stamp_ns: EPOCH,
-                    parent_frame_id: "world",
-                    child_frame_id: "hand",
-                    translation: [1.0, 2.0, 3.0],
-                }; 2],
-            ),
-        };
-        let mut msgs = vec![good; 7];
+        let mut msgs = vec![valid(schema, enc); 7];
         msgs.push(bad);
-        let data = enc.schema_data(schema);
-        let bytes = raw_file(
-            schema.name(),
-            enc.schema_encoding(),
-            &data,
-            enc.message_encoding(),
-            &msgs,
-        );
-        let (err, text) = load_err("bad.mcap", &bytes);
+        let (err, text) = load_err("bad.mcap", &fox_file(schema, enc, &msgs));
         assert!(matches!(err, Error::Decode { .. }), "{reason}: {err:?}");
         for part in ["bad.mcap", "topic /hand", "sample 7", reason] {
             assert!(text.contains(part), "{text:?} lacks {part:?}");
@@ -734,22 +614,10 @@ fn malformed_messages_name_topic_and_sample() {
 
 #[test]
 fn no_bytes_make_a_decoder_panic() {
-    let t = Transform {
-        stamp_ns: EPOCH,
-        parent_frame_id: "world",
-        child_frame_id: "hand",
-        translation: [0.1, -0.2, 0.3],
-    };
-    let ps = [[0.1, 0.2, 0.3], [0.4, 0.5, 0.6]];
     let mut rng = Rng::new(99);
     for schema in FoxgloveSchema::ALL {
         for enc in [Protobuf, Json] {
-            let valid = match schema {
-                PoseInFrame => pose_in_frame(enc, EPOCH, ps[0]),
-                PosesInFrame => poses_in_frame(enc, EPOCH, &ps),
-                FrameTransform => frame_transforms(enc, &[t]),
-                FrameTransforms => frame_transforms(enc, &[t, t]),
-            };
+            let valid = valid(schema, enc);
             let mut d = decoder(schema, enc);
             assert!(decode_all(d.as_mut(), &valid).is_ok(), "{schema:?} {enc:?}");
             let mut inputs: Vec<Vec<u8>> = (0..valid.len()).map(|n| valid[..n].to_vec()).collect();

@@ -1,6 +1,7 @@
 //! Plain CSV demonstrations: one `t,x,y,z` row per sample, `t` in seconds,
 //! positions in metres, comma separated. A first row whose fields are all
-//! non-numeric is a header and is skipped; blank lines are skipped anywhere.
+//! non-numeric is a header and is skipped; blank lines and a UTF-8 byte
+//! order mark are skipped. Quoting is not supported.
 
 use crate::demo::{RawDemo, TimeSource};
 use crate::error::{Error, Location, Result};
@@ -21,6 +22,7 @@ pub fn load_csv(label: &str, text: &str) -> Result<RawDemo> {
     let mut stamps_ns = Vec::new();
     let mut positions = Vec::new();
     let mut first = true;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (line_index, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() {

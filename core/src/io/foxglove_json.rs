@@ -67,45 +67,32 @@ impl MessageDecoder for JsonDecoder {
                     });
                 }
             }
-            FoxgloveSchema::FrameTransform => {
-                let (key, stamp_ns, position) = transform(root, "")?;
-                out(PoseSample {
-                    key: Some(Cow::Borrowed(key)),
-                    stamp_ns,
-                    position,
-                });
-            }
+            FoxgloveSchema::FrameTransform => out(transform(root, "")?),
             FoxgloveSchema::FrameTransforms => {
                 let samples = objects(root, "transforms")?
                     .enumerate()
                     .map(|(i, t)| transform(t?, &format!("transforms[{i}].")))
                     .collect::<Result<Vec<_>, String>>()?;
-                for (key, stamp_ns, position) in samples {
-                    out(PoseSample {
-                        key: Some(Cow::Borrowed(key)),
-                        stamp_ns,
-                        position,
-                    });
-                }
+                samples.into_iter().for_each(out);
             }
         }
         Ok(())
     }
 }
 
-/// The child frame, stamp and translation of a `foxglove.FrameTransform`;
-/// `path` is the prefix of its fields in errors (`transforms[2].`).
-fn transform<'v>(t: &'v Object, path: &str) -> Result<(&'v str, Option<i64>, [f64; 3]), String> {
+/// The pose of a `foxglove.FrameTransform`: keyed by its child frame, at
+/// its translation; `path` prefixes its fields in errors (`transforms[2].`).
+fn transform<'v>(t: &'v Object, path: &str) -> Result<PoseSample<'v>, String> {
     let child = match field(t, "child_frame_id") {
         None => "",
         Some(Value::String(s)) => s.as_str(),
         Some(_) => return Err(format!("{path}child_frame_id is not a string")),
     };
-    Ok((
-        child,
-        stamp(t, path)?,
-        vector(Some(t), "translation", path)?,
-    ))
+    Ok(PoseSample {
+        key: Some(Cow::Borrowed(child)),
+        stamp_ns: stamp(t, path)?,
+        position: vector(Some(t), "translation", path)?,
+    })
 }
 
 /// A field, `None` when missing or `null`.

@@ -151,26 +151,13 @@ impl MessageDecoder for ProtoDecoder {
                     });
                 }
             }
-            Shape::Keyed(transform) => {
-                let (key, stamp_ns, position) = transform.read(&msg)?;
-                out(PoseSample {
-                    key: Some(key),
-                    stamp_ns,
-                    position,
-                });
-            }
+            Shape::Keyed(transform) => out(transform.read(&msg)?),
             Shape::KeyedList { transforms, each } => {
                 let list = msg.get_field(transforms);
                 let samples = messages(&list, transforms)?
                     .map(|t| each.read(t))
                     .collect::<Result<Vec<_>, String>>()?;
-                for (key, stamp_ns, position) in samples {
-                    out(PoseSample {
-                        key: Some(key),
-                        stamp_ns,
-                        position,
-                    });
-                }
+                samples.into_iter().for_each(out);
             }
         }
         Ok(())
@@ -260,17 +247,19 @@ impl Transform {
         })
     }
 
-    /// The child frame, stamp and translation of one transform.
-    fn read<'m>(
-        &self,
-        msg: &'m DynamicMessage,
-    ) -> Result<(Cow<'m, str>, Option<i64>, [f64; 3]), String> {
+    /// The pose of one transform: keyed by its child frame, at its
+    /// translation.
+    fn read<'m>(&self, msg: &'m DynamicMessage) -> Result<PoseSample<'m>, String> {
         let key = match msg.get_field(&self.child) {
             Cow::Borrowed(Value::String(s)) => Cow::Borrowed(s.as_str()),
             Cow::Owned(Value::String(s)) => Cow::Owned(s),
             _ => return Err(not_a("string", &self.child)),
         };
-        Ok((key, self.stamp.read(msg)?, self.translation.read(msg)?))
+        Ok(PoseSample {
+            key: Some(key),
+            stamp_ns: self.stamp.read(msg)?,
+            position: self.translation.read(msg)?,
+        })
     }
 }
 

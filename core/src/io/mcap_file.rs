@@ -1,5 +1,5 @@
 //! The MCAP loader: one pass over the file with mcap's sans-IO
-//! [`LinearReader`], chunk CRCs checked before a chunk's messages are used,
+//! [`LinearReader`], each chunk opened and CRC-checked by [`super::chunks`],
 //! messages routed to their decoders, one demo per topic and key (method.md
 //! sections 1 and 2.1-2.2). A file that ends early keeps the messages of its
 //! complete chunks, with a warning.
@@ -10,6 +10,7 @@ use std::io::Read;
 use mcap::records::Record;
 use mcap::sans_io::linear_reader::{LinearReadEvent, LinearReader, LinearReaderOptions};
 
+use super::chunks::{ChunkError, for_each_record};
 use super::{ChannelSchema, MessageDecoder, decoder_for};
 use crate::demo::{RawDemo, TimeSource};
 use crate::error::{Error, Location, Result};
@@ -125,45 +126,226 @@ impl Channel {
     }
 }
 
+/// Everything gathered from the records so far.
+struct Collector<'o> {
+    label: &'o str,
+    options: &'o LoadOptions,
+    schemas: BTreeMap<u16, (String, String, Vec<u8>)>,
+    channels: BTreeMap<u16, Option<Channel>>,
+    skipped: Vec<(String, String)>,
+    /// The first message that failed to decode. It is reported once the file
+    /// is read, unless its chunk fails its CRC first (then the file is
+    /// reported corrupt instead).
+    pending: Option<Error>,
+}
+
+impl Collector<'_> {
+    fn at(&self) -> Location {
+        Location::file(self.label)
+    }
+
+    fn mcap_error(&self, e: &mcap::McapError) -> Error {
+        Error::Mcap {
+            at: self.at(),
+            reason: describe(e),
+        }
+    }
+
+    fn samples(&self) -> usize {
+        self.channels.values().flatten().map(Channel::samples).sum()
+    }
+
+    /// Takes one record (from the file or from inside a chunk).
+    fn record(&mut self, opcode: u8, data: &[u8]) -> Result<()> {
+        match mcap::parse_record(opcode, data).map_err(|e| self.mcap_error(&e))? {
+            Record::Schema { header, data } => {
+                self.schemas
+                    .insert(header.id, (header.name, header.encoding, data.into_owned()));
+            }
+            Record::Channel(ch) => self.channel(ch)?,
+            Record::Message { header, data } => self.message(&header, &data)?,
+            _ => {}
+        }
+        Ok(())
+    }
+
+    fn channel(&mut self, ch: mcap::records::Channel) -> Result<()> {
+        if self.channels.contains_key(&ch.id) {
+            return Ok(());
+        }
+        let (name, encoding, data) = self
+            .schemas
+            .get(&ch.schema_id)
+            .map(|(n, e, d)| (n.as_str(), e.as_str(), d.as_slice()))
+            .unwrap_or(("", "", &[]));
+        let schema = ChannelSchema {
+            message_encoding: &ch.message_encoding,
+            schema_name: name,
+            schema_encoding: encoding,
+            schema_data: data,
+        };
+        let decoder = match decoder_for(&schema) {
+            Some(Ok(decoder)) => Some(decoder),
+            Some(Err(reason)) => {
+                return Err(Error::Decode {
+                    at: self.at().topic(&ch.topic),
+                    reason: format!("unusable schema {name}: {reason}"),
+                });
+            }
+            None => {
+                let what = if name.is_empty() {
+                    format!("no schema, {}", ch.message_encoding)
+                } else {
+                    name.to_owned()
+                };
+                self.skipped.push((ch.topic.clone(), what));
+                None
+            }
+        };
+        let entry = decoder.map(|decoder| Channel {
+            topic: ch.topic.clone(),
+            decoder,
+            messages: 0,
+            unkeyed: Stream::default(),
+            keyed: BTreeMap::new(),
+        });
+        self.channels.insert(ch.id, entry);
+        Ok(())
+    }
+
+    fn message(&mut self, header: &mcap::records::MessageHeader, data: &[u8]) -> Result<()> {
+        let label = self.label;
+        let options = self.options;
+        let Some(slot) = self.channels.get_mut(&header.channel_id) else {
+            return Err(Error::Mcap {
+                at: Location::file(label),
+                reason: format!(
+                    "message on channel {} that was never declared",
+                    header.channel_id
+                ),
+            });
+        };
+        let Some(channel) = slot else {
+            return Ok(());
+        };
+        if self.pending.is_some() {
+            return Ok(());
+        }
+        let index = channel.messages;
+        channel.messages += 1;
+        let log_time = i64::try_from(header.log_time).unwrap_or(i64::MAX);
+        let mut bad: Option<(Option<String>, usize)> = None;
+        let Channel {
+            topic,
+            decoder,
+            unkeyed,
+            keyed,
+            ..
+        } = channel;
+        let decoded = decoder.decode(data, &mut |sample| {
+            if let Some(k) = &sample.key
+                && !options.frames.is_empty()
+                && !options.frames.iter().any(|f| f == k)
+            {
+                return;
+            }
+            if let Some(axis) = sample.position.iter().position(|v| !v.is_finite()) {
+                bad.get_or_insert((sample.key.map(|k| k.into_owned()), axis));
+                return;
+            }
+            let stream = match sample.key {
+                None => &mut *unkeyed,
+                Some(k) => {
+                    if !keyed.contains_key(k.as_ref()) {
+                        keyed.insert(k.clone().into_owned(), Stream::default());
+                    }
+                    match keyed.get_mut(k.as_ref()) {
+                        Some(s) => s,
+                        None => return,
+                    }
+                }
+            };
+            stream.stamps.push(sample.stamp_ns);
+            stream.log_times.push(log_time);
+            stream.positions.push(options.up.to_z_up(sample.position));
+        });
+        let at = Location::file(label);
+        if let Err(reason) = decoded {
+            self.pending = Some(Error::Decode {
+                at: at.topic(topic.as_str()).sample(index),
+                reason,
+            });
+        } else if let Some((key, axis)) = bad {
+            let name = key.map_or_else(|| topic.clone(), |k| format!("{topic}:{k}"));
+            self.pending = Some(Error::NonFinite {
+                at: at.topic(name).sample(index),
+                field: ["position.x", "position.y", "position.z"][axis],
+            });
+        }
+        Ok(())
+    }
+
+    /// Opens a chunk record and takes its records.
+    fn chunk(&mut self, body: &[u8]) -> Result<()> {
+        let mut failed = None;
+        let walked = for_each_record(body, RECORD_LENGTH_LIMIT, &mut |opcode, data| {
+            if failed.is_none()
+                && let Err(e) = self.record(opcode, data)
+            {
+                failed = Some(e);
+            }
+        });
+        match walked {
+            Err(ChunkError::Mcap(e @ mcap::McapError::BadChunkCrc { .. })) => {
+                Err(self.mcap_error(&e))
+            }
+            Err(ChunkError::Mcap(e)) => {
+                Err(self.pending.take().unwrap_or_else(|| self.mcap_error(&e)))
+            }
+            Err(ChunkError::Overrun { opcode, len, left }) => Err(Error::Mcap {
+                at: self.at(),
+                reason: format!(
+                    "a record (opcode {opcode:#04x}) inside a chunk declares {len} bytes but the chunk has {left} left: the file is corrupt"
+                ),
+            }),
+            Ok(()) => failed.map_or(Ok(()), Err),
+        }
+    }
+}
+
 /// Loads the demos of an MCAP stream; `label` names the file in errors and
 /// in the demo names (`file:topic`, `file:topic:key`, with only the file name
 /// of a path).
 pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) -> Result<Loaded> {
-    let at = || Location::file(label);
-    let mcap_err = |e: mcap::McapError| Error::Mcap {
-        at: at(),
-        reason: describe(&e),
-    };
-    // Chunk CRCs are checked as each chunk ends (checking them first would
-    // make mcap reserve the chunk's declared size up front). A message that
-    // fails to decode is therefore held as `pending` until the file is read:
-    // if its chunk then fails its CRC, the file is reported corrupt instead.
+    // Whole chunks come out of the outer reader and are opened by
+    // `chunks::for_each_record` (see there for why). Their CRCs are checked
+    // as each is opened.
     let reader_options = LinearReaderOptions::default()
-        .with_validate_chunk_crcs(true)
+        .with_emit_chunks(true)
         .with_record_length_limit(RECORD_LENGTH_LIMIT);
-    let mut pending: Option<Error> = None;
     let mut reader = LinearReader::new_with_options(reader_options);
-    let mut schemas: BTreeMap<u16, (String, String, Vec<u8>)> = BTreeMap::new();
-    let mut channels: BTreeMap<u16, Option<Channel>> = BTreeMap::new();
-    let mut skipped: Vec<(String, String)> = Vec::new();
+    let mut c = Collector {
+        label,
+        options,
+        schemas: BTreeMap::new(),
+        channels: BTreeMap::new(),
+        skipped: Vec::new(),
+        pending: None,
+    };
     let mut warnings = Vec::new();
     let mut bytes_read: u64 = 0;
-
     while let Some(event) = reader.next_event() {
         let event = match event {
             Ok(event) => event,
-            Err(mcap::McapError::UnexpectedEof)
-                if pending.is_none() && channels.values().flatten().any(|c| c.samples() > 0) =>
-            {
-                let kept: usize = channels.values().flatten().map(Channel::samples).sum();
+            Err(mcap::McapError::UnexpectedEof) if c.pending.is_none() && c.samples() > 0 => {
                 warnings.push(format!(
                     "{label}: the file is truncated (it ends inside a record after {bytes_read} bytes); \
-                     kept the {kept} messages of its complete chunks, the rest is lost"
+                     kept the {} messages of its complete chunks, the rest is lost",
+                    c.samples()
                 ));
                 break;
             }
-            Err(e @ mcap::McapError::BadChunkCrc { .. }) => return Err(mcap_err(e)),
-            Err(e) => return Err(pending.unwrap_or_else(|| mcap_err(e))),
+            Err(e) => return Err(c.pending.take().unwrap_or_else(|| c.mcap_error(&e))),
         };
         match event {
             LinearReadEvent::ReadRequest(need) => {
@@ -177,135 +359,20 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
                 bytes_read += n as u64;
                 reader.notify_read(n);
             }
-            LinearReadEvent::Record { opcode, data } => {
-                match mcap::parse_record(opcode, data).map_err(mcap_err)? {
-                    Record::Schema { header, data } => {
-                        schemas
-                            .insert(header.id, (header.name, header.encoding, data.into_owned()));
-                    }
-                    Record::Channel(ch) => {
-                        if channels.contains_key(&ch.id) {
-                            continue;
-                        }
-                        let (name, encoding, data) = schemas
-                            .get(&ch.schema_id)
-                            .map(|(n, e, d)| (n.as_str(), e.as_str(), d.as_slice()))
-                            .unwrap_or(("", "", &[]));
-                        let schema = ChannelSchema {
-                            message_encoding: &ch.message_encoding,
-                            schema_name: name,
-                            schema_encoding: encoding,
-                            schema_data: data,
-                        };
-                        let decoder = match decoder_for(&schema) {
-                            Some(Ok(decoder)) => Some(decoder),
-                            Some(Err(reason)) => {
-                                return Err(Error::Decode {
-                                    at: at().topic(&ch.topic),
-                                    reason: format!("unusable schema {name}: {reason}"),
-                                });
-                            }
-                            None => {
-                                let what = if name.is_empty() {
-                                    format!("no schema, {}", ch.message_encoding)
-                                } else {
-                                    name.to_owned()
-                                };
-                                skipped.push((ch.topic.clone(), what));
-                                None
-                            }
-                        };
-                        let entry = decoder.map(|decoder| Channel {
-                            topic: ch.topic.clone(),
-                            decoder,
-                            messages: 0,
-                            unkeyed: Stream::default(),
-                            keyed: BTreeMap::new(),
-                        });
-                        channels.insert(ch.id, entry);
-                    }
-                    Record::Message { header, data } => {
-                        let Some(slot) = channels.get_mut(&header.channel_id) else {
-                            return Err(Error::Mcap {
-                                at: at(),
-                                reason: format!(
-                                    "message on channel {} that was never declared",
-                                    header.channel_id
-                                ),
-                            });
-                        };
-                        let Some(channel) = slot else { continue };
-                        if pending.is_some() {
-                            continue;
-                        }
-                        let index = channel.messages;
-                        channel.messages += 1;
-                        let log_time = i64::try_from(header.log_time).unwrap_or(i64::MAX);
-                        let mut bad: Option<(Option<String>, usize)> = None;
-                        let Channel {
-                            topic,
-                            decoder,
-                            unkeyed,
-                            keyed,
-                            ..
-                        } = channel;
-                        let decoded = decoder.decode(&data, &mut |sample| {
-                            if let Some(k) = &sample.key {
-                                if !options.frames.is_empty()
-                                    && !options.frames.iter().any(|f| f == k)
-                                {
-                                    return;
-                                }
-                            }
-                            if let Some(axis) = sample.position.iter().position(|v| !v.is_finite())
-                            {
-                                bad.get_or_insert((sample.key.map(|k| k.into_owned()), axis));
-                                return;
-                            }
-                            let stream = match sample.key {
-                                None => &mut *unkeyed,
-                                Some(k) => {
-                                    if !keyed.contains_key(k.as_ref()) {
-                                        keyed.insert(k.clone().into_owned(), Stream::default());
-                                    }
-                                    match keyed.get_mut(k.as_ref()) {
-                                        Some(s) => s,
-                                        None => return,
-                                    }
-                                }
-                            };
-                            stream.stamps.push(sample.stamp_ns);
-                            stream.log_times.push(log_time);
-                            stream.positions.push(options.up.to_z_up(sample.position));
-                        });
-                        if let Err(reason) = decoded {
-                            pending = Some(Error::Decode {
-                                at: at().topic(topic.as_str()).sample(index),
-                                reason,
-                            });
-                        } else if let Some((key, axis)) = bad {
-                            let name =
-                                key.map_or_else(|| topic.clone(), |k| format!("{topic}:{k}"));
-                            pending = Some(Error::NonFinite {
-                                at: at().topic(name).sample(index),
-                                field: ["position.x", "position.y", "position.z"][axis],
-                            });
-                        }
-                    }
-                    _ => {}
-                }
+            LinearReadEvent::Record { opcode, data } if opcode == mcap::records::op::CHUNK => {
+                c.chunk(data)?;
             }
+            LinearReadEvent::Record { opcode, data } => c.record(opcode, data)?,
         }
     }
-
-    if let Some(err) = pending {
+    if let Some(err) = c.pending {
         return Err(err);
     }
     let file_name = std::path::Path::new(label)
         .file_name()
         .map_or_else(|| label.to_owned(), |n| n.to_string_lossy().into_owned());
     let mut streams: Vec<(String, Option<String>, Stream)> = Vec::new();
-    for channel in channels.into_values().flatten() {
+    for channel in c.channels.into_values().flatten() {
         streams.push((channel.topic.clone(), None, channel.unkeyed));
         for (key, stream) in channel.keyed {
             streams.push((channel.topic.clone(), Some(key), stream));
@@ -317,6 +384,7 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
         .filter(|(_, _, s)| !s.positions.is_empty())
         .map(|(topic, key, s)| finish_stream(label, &file_name, topic, key, s))
         .collect();
+    let mut skipped = c.skipped;
     skipped.sort();
     if demos.is_empty() {
         return Err(Error::NoDemos {

@@ -8,6 +8,7 @@
 //! [`write`] is the reverse path, used by the sample generator and the tests.
 
 pub mod cdr;
+pub mod chunks;
 pub mod csv;
 pub mod export;
 pub mod foxglove_json;
