@@ -1,35 +1,15 @@
 //! End-to-end tests at the process boundary: the `dmpscope` binary on the
 //! bundled sample, its outputs parsed as a user's script would.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod support;
+
+use std::path::PathBuf;
 
 use serde_json::Value;
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
+use support::{dmpscope, repo, text, tmp_path as tmp};
 
 fn sample() -> PathBuf {
-    repo().join("assets/reach10.mcap")
-}
-
-fn dmpscope(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dmpscope"))
-        .args(args)
-        .current_dir(repo())
-        .output()
-        .expect("run dmpscope")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("dmpscope-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir.join(name)
+    support::sample_path()
 }
 
 fn landscape_json(extra: &[&str]) -> Value {

@@ -2,25 +2,13 @@
 //! export (MCAP that loads back, DMP JSON), segmentation of one take, the
 //! axis convention and CSV input.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod support;
 
 use serde_json::Value;
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
+use support::dmpscope;
 
 fn sample() -> String {
-    repo().join("assets/reach10.mcap").display().to_string()
-}
-
-fn dmpscope(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dmpscope"))
-        .args(args)
-        .current_dir(repo())
-        .output()
-        .expect("run dmpscope")
+    support::sample_path().display().to_string()
 }
 
 fn ok(args: &[&str]) -> String {
@@ -34,9 +22,7 @@ fn ok(args: &[&str]) -> String {
 }
 
 fn tmp(name: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("dmpscope-cli-io-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir.join(name).display().to_string()
+    support::tmp_path(name).display().to_string()
 }
 
 #[test]

@@ -4,6 +4,9 @@
 //! `S`, `J` recombination, bit-identical landscape fill paths, extraction on a
 //! landscape with a known interior optimum, and the paper presets.
 
+mod common;
+
+use common::{close, max_abs};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -52,20 +55,6 @@ fn log_grid(dm: (f64, f64, usize), km: (f64, f64, usize)) -> Grid {
         dm: axis(dm),
         km: axis(km),
     }
-}
-
-fn max_abs(v: impl IntoIterator<Item = f64>) -> f64 {
-    v.into_iter().fold(0.0, |a, x| a.max(x.abs()))
-}
-
-/// `|actual - expected| <= tol`, naming `what` when not.
-#[track_caller]
-fn close(actual: f64, expected: f64, tol: f64, what: impl std::fmt::Display) {
-    let diff = (actual - expected).abs();
-    assert!(
-        diff <= tol,
-        "{what}: {actual} vs {expected} (off by {diff:e}, tolerance {tol:e})"
-    );
 }
 
 fn norm(v: [f64; 3]) -> f64 {

@@ -1,6 +1,9 @@
 //! Savitzky-Golay (method.md section 2.4) against exact rational least
 //! squares: the centre kernels, exactness on cubics, and the edge windows.
 
+mod common;
+
+use common::{close, max_abs};
 use dmpscope_core::savgol::SavGol;
 use dmpscope_core::synth::Rng;
 
@@ -73,20 +76,6 @@ fn exact_kernel(a: &[[Q; 21]; 4], deriv: usize, u: i128) -> Vec<Q> {
             _ => Q::int(2) * a[2][i] + Q::int(6) * a[3][i] * u,
         })
         .collect()
-}
-
-fn max_abs(v: impl IntoIterator<Item = f64>) -> f64 {
-    v.into_iter().fold(0.0, |a, x| a.max(x.abs()))
-}
-
-/// `|actual - expected| <= tol`, naming `what` when not.
-#[track_caller]
-fn close(actual: f64, expected: f64, tol: f64, what: impl std::fmt::Display) {
-    let diff = (actual - expected).abs();
-    assert!(
-        diff <= tol,
-        "{what}: {actual} vs {expected} (off by {diff:e}, tolerance {tol:e})"
-    );
 }
 
 // ---------------------------------------------------------- Savitzky-Golay

@@ -8,6 +8,7 @@ use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::landscape::{Axis, Grid};
 use dmpscope_core::{PrepSettings, landscape};
 
+use dmpscope_core::demo::median;
 use dmpscope_core::io::load_path;
 
 use super::inputs::{expand, model_of};
@@ -32,16 +33,6 @@ pub struct Args {
     /// `MessageStream` on the same bytes.
     #[arg(long, value_name = "MESSAGES")]
     ingest: Option<usize>,
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let m = v.len() / 2;
-    if !v.len().is_multiple_of(2) {
-        v[m]
-    } else {
-        (v[m - 1] + v[m]) / 2.0
-    }
 }
 
 /// Times the landscape and the operating point; prints medians in ms.
@@ -93,15 +84,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         args.grid
     );
     println!("load + prepare + fit:                 {load_ms:8.2} ms");
-    let lm = median(land_ms);
+    let lm = median(&land_ms);
     println!(
         "landscape {0}x{0} (median of {1}):      {lm:8.2} ms   (goal 250 ms: {2:.2}x)",
         args.grid,
         args.repeat.max(1),
         lm / 250.0
     );
-    let om = median(op_ms);
-    let rm = median(rollout_ms);
+    let om = median(&op_ms);
+    let rm = median(&rollout_ms);
     println!(
         "operating point: d, a_peak, S (median): {om:8.3} ms   (goal 0.5 ms: {:.2}x)",
         om / 0.5

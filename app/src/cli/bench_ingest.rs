@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use dmpscope_core::demo::median;
 use dmpscope_core::io::load_bytes;
 use dmpscope_core::io::write::{TopicSamples, write_pose_stamped};
 
@@ -35,11 +36,6 @@ fn recording(messages: usize, compress: bool) -> anyhow::Result<Vec<u8>> {
     Ok(write_pose_stamped(std::io::Cursor::new(Vec::new()), &topics, compress)?.into_inner())
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
 /// Prints MB/s of dmpscope's loader and of mcap's `MessageStream`.
 pub fn run(messages: usize, repeat: usize) -> anyhow::Result<()> {
     println!("ingest of {messages} PoseStamped messages (10 topics), median of {repeat}:");
@@ -63,7 +59,7 @@ pub fn run(messages: usize, repeat: usize) -> anyhow::Result<()> {
             raw.push(t.elapsed().as_secs_f64());
             anyhow::ensure!(count == n, "MessageStream saw {count} messages");
         }
-        let (ours, raw) = (median(ours), median(raw));
+        let (ours, raw) = (median(&ours), median(&raw));
         println!(
             "  {:<12} {mb:8.1} MB   dmpscope load {:7.1} MB/s   mcap MessageStream {:7.1} MB/s   ratio {:.2}",
             if compress { "zstd" } else { "uncompressed" },

@@ -188,3 +188,18 @@ pub fn raw_demo(stamps: &[i64], positions: &[[f64; 3]]) -> RawDemo {
         time_source: TimeSource::HeaderStamp,
     }
 }
+
+/// The largest absolute value.
+pub fn max_abs(v: impl IntoIterator<Item = f64>) -> f64 {
+    v.into_iter().fold(0.0, |a, x| a.max(x.abs()))
+}
+
+/// `|actual - expected| <= tol`, naming `what` when not.
+#[track_caller]
+pub fn close(actual: f64, expected: f64, tol: f64, what: impl std::fmt::Display) {
+    let diff = (actual - expected).abs();
+    assert!(
+        diff <= tol,
+        "{what}: {actual} vs {expected} (off by {diff:e}, tolerance {tol:e})"
+    );
+}
