@@ -9,7 +9,7 @@ mod common;
 use std::alloc::System;
 use std::time::Instant;
 
-use common::{first_chunk, load, mcap_of, raw_mcap, reach};
+use common::{first_chunk, load, mcap_of, raw_mcap, reach, records};
 use dmpscope_core::Result;
 use dmpscope_core::io::Loaded;
 use dmpscope_core::io::mcap_file::RECORD_LENGTH_LIMIT;
@@ -124,9 +124,42 @@ fn large_declared_lengths() {
     }
 }
 
+/// Found by the fuzzer: a string length inside a schema or channel record
+/// (a u32) that claims nearly 4 GiB made mcap's parser reserve it. Every
+/// length-prefixed field of those records is checked against the record.
+fn huge_string_lengths() {
+    let file = raw_mcap(Some(("x", b"{}")), "/x", "json", &[(1, b"{}".to_vec())]);
+    let mut patched = 0;
+    for (_, opcode, body, _) in records(&file) {
+        // The first length-prefixed field: schema name, channel topic.
+        let field = match opcode {
+            3 => body + 2,
+            4 => body + 4,
+            _ => continue,
+        };
+        let mut bad = file.clone();
+        bad[field..field + 4].copy_from_slice(&0xFFFF_FFF0u32.to_le_bytes());
+        let region = Region::new(GLOBAL);
+        let result = load("strings.mcap", &bad);
+        let allocated = region.change().bytes_allocated;
+        assert!(
+            allocated < ALLOWANCE,
+            "opcode {opcode}: {allocated} bytes allocated"
+        );
+        let err = result.expect_err("a record whose string runs past it loads");
+        assert!(
+            err.to_string().contains("strings.mcap") && err.to_string().contains("malformed"),
+            "{err}"
+        );
+        patched += 1;
+    }
+    assert_eq!(patched, 2, "a schema and a channel record");
+}
+
 /// The one test of this binary: nothing else allocates while it measures.
 #[test]
 fn declared_lengths_fail_fast_without_being_allocated() {
     huge_declared_lengths();
     large_declared_lengths();
+    huge_string_lengths();
 }

@@ -155,8 +155,24 @@ impl Collector<'_> {
         self.channels.values().flatten().map(Channel::samples).sum()
     }
 
-    /// Takes one record (from the file or from inside a chunk).
+    /// Takes one record (from the file or from inside a chunk). Only
+    /// schemas, channels and messages are parsed, and only once their
+    /// length fields fit the record: mcap's parser reserves whatever a string
+    /// length says, so a 300-byte record could ask for 4 GiB.
     fn record(&mut self, opcode: u8, data: &[u8]) -> Result<()> {
+        use mcap::records::op;
+        if ![op::SCHEMA, op::CHANNEL, op::MESSAGE].contains(&opcode) {
+            return Ok(());
+        }
+        if let Err(field) = lengths_fit(opcode, data) {
+            return Err(Error::Mcap {
+                at: self.at(),
+                reason: format!(
+                    "a record (opcode {opcode:#04x}) is malformed: its {field} runs past the record's {} bytes",
+                    data.len()
+                ),
+            });
+        }
         match mcap::parse_record(opcode, data).map_err(|e| self.mcap_error(&e))? {
             Record::Schema { header, data } => {
                 self.schemas
@@ -425,6 +441,29 @@ fn finish_stream(
         positions: s.positions,
         time_source,
     }
+}
+
+/// Checks that every length-prefixed field of a schema or channel record
+/// fits inside the record; `Err` names the first that does not.
+fn lengths_fit(opcode: u8, body: &[u8]) -> std::result::Result<(), &'static str> {
+    use mcap::records::op;
+    let (mut pos, fields) = match opcode {
+        op::SCHEMA => (2, ["name", "encoding", "data"]),
+        op::CHANNEL => (4, ["topic", "message encoding", "metadata"]),
+        _ => return Ok(()),
+    };
+    for what in fields {
+        let len = body
+            .get(pos..pos + 4)
+            .and_then(|b| <[u8; 4]>::try_from(b).ok())
+            .map(u32::from_le_bytes)
+            .ok_or(what)?;
+        pos = pos + 4 + len as usize;
+        if pos > body.len() {
+            return Err(what);
+        }
+    }
+    Ok(())
 }
 
 /// Reads what is available, retrying on interruption; 0 means end of input.
