@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use dmpscope_core::io::write::{TopicSamples, write_pose_stamped};
+use dmpscope_core::io::write::{BulkTopic, TopicSamples, write_pose_stamped_with_bulk};
 use dmpscope_core::synth::reach_demos;
 
 /// Arguments of `gen-sample`.
@@ -22,6 +22,10 @@ pub struct Args {
     /// Write uncompressed chunks instead of zstd.
     #[arg(long)]
     uncompressed: bool,
+    /// Also write this many MB of 1 MB camera frames on `/camera/image_raw`
+    /// (a large recording in which the poses are a small part).
+    #[arg(long, value_name = "MB", default_value_t = 0)]
+    padding_mb: usize,
 }
 
 /// The start of the first demo's recording (2025-11-22T10:00:00Z).
@@ -45,8 +49,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .collect();
     let file = std::fs::File::create(&args.out)
         .with_context(|| format!("{}: cannot create", args.out.display()))?;
-    write_pose_stamped(std::io::BufWriter::new(file), &samples, !args.uncompressed)
-        .with_context(|| format!("{}: cannot write MCAP", args.out.display()))?;
+    let bulk = (args.padding_mb > 0).then_some(BulkTopic {
+        topic: "/camera/image_raw",
+        message_bytes: 1_000_000,
+        messages: args.padding_mb,
+    });
+    write_pose_stamped_with_bulk(
+        std::io::BufWriter::new(file),
+        &samples,
+        !args.uncompressed,
+        bulk,
+    )
+    .with_context(|| format!("{}: cannot write MCAP", args.out.display()))?;
     let corrected: Vec<&str> = demos
         .iter()
         .zip(&topics)

@@ -19,6 +19,18 @@ pub struct TopicSamples<'a> {
     pub samples: &'a [(i64, [f64; 3])],
 }
 
+/// A bulky topic of another schema (camera frames, say), to make large
+/// recordings in which the poses are a small part.
+#[derive(Clone, Copy, Debug)]
+pub struct BulkTopic<'a> {
+    /// The topic name.
+    pub topic: &'a str,
+    /// Bytes per message.
+    pub message_bytes: usize,
+    /// Number of messages.
+    pub messages: usize,
+}
+
 /// Writes the topics as `geometry_msgs/msg/PoseStamped` into an MCAP file
 /// (zstd-compressed chunks when `compress`), topic after topic, each topic's
 /// samples in the order given (so tests can write out-of-order stamps).
@@ -26,6 +38,17 @@ pub fn write_pose_stamped<W: Write + Seek>(
     out: W,
     topics: &[TopicSamples<'_>],
     compress: bool,
+) -> mcap::McapResult<W> {
+    write_pose_stamped_with_bulk(out, topics, compress, None)
+}
+
+/// As [`write_pose_stamped`], then a bulky `sensor_msgs/msg/Image` topic of
+/// opaque bytes.
+pub fn write_pose_stamped_with_bulk<W: Write + Seek>(
+    out: W,
+    topics: &[TopicSamples<'_>],
+    compress: bool,
+    bulk: Option<BulkTopic<'_>>,
 ) -> mcap::McapResult<W> {
     let compression = if compress {
         Some(mcap::Compression::Zstd)
@@ -54,6 +77,26 @@ pub fn write_pose_stamped<W: Write + Seek>(
                     publish_time: time,
                 },
                 &encode_pose_stamped(stamp, topic.frame_id, position),
+            )?;
+        }
+    }
+    if let Some(bulk) = bulk {
+        let schema = writer.add_schema("sensor_msgs/msg/Image", "ros2msg", b"")?;
+        let channel_id = writer.add_channel(schema, bulk.topic, "cdr", &BTreeMap::new())?;
+        let mut payload = vec![0u8; bulk.message_bytes];
+        for (sequence, byte) in payload.iter_mut().enumerate() {
+            *byte = (sequence * 7 % 251) as u8;
+        }
+        for sequence in 0..bulk.messages {
+            let time = 1_700_000_000_000_000_000 + sequence as u64 * 33_000_000;
+            writer.write_to_known_channel(
+                &MessageHeader {
+                    channel_id,
+                    sequence: sequence as u32,
+                    log_time: time,
+                    publish_time: time,
+                },
+                &payload,
             )?;
         }
     }
