@@ -154,6 +154,19 @@ fn huge_string_lengths() {
         patched += 1;
     }
     assert_eq!(patched, 2, "a schema and a channel record");
+    // The same in a chunk's header: its compression name.
+    for compress in [false, true] {
+        let file = mcap_of(&[("/a", &reach(40))], compress);
+        let (_, body, _, _) = first_chunk(&file);
+        let mut bad = file.clone();
+        bad[body + 28..body + 32].copy_from_slice(&0xFFFF_FFF0u32.to_le_bytes());
+        let region = Region::new(GLOBAL);
+        let result = load("chunk-name.mcap", &bad);
+        let allocated = region.change().bytes_allocated;
+        assert!(allocated < ALLOWANCE, "{allocated} bytes allocated");
+        let err = result.expect_err("a chunk whose compression name runs past it loads");
+        assert!(err.to_string().contains("malformed"), "{err}");
+    }
 }
 
 /// The one test of this binary: nothing else allocates while it measures.

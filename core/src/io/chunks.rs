@@ -17,6 +17,8 @@ use mcap::sans_io::linear_reader::{LinearReadEvent, LinearReader, LinearReaderOp
 pub enum ChunkError {
     /// The reader's own error.
     Mcap(McapError),
+    /// A length field of the chunk's header runs past the chunk record.
+    Malformed(&'static str),
     /// A record inside the chunk runs past its end.
     Overrun {
         /// The record's opcode.
@@ -35,6 +37,7 @@ pub fn for_each_record(
     limit: usize,
     record: &mut dyn FnMut(u8, &[u8]),
 ) -> Result<(), ChunkError> {
+    lengths_fit(mcap::records::op::CHUNK, chunk_body).map_err(ChunkError::Malformed)?;
     match mcap::parse_record(mcap::records::op::CHUNK, chunk_body).map_err(ChunkError::Mcap)? {
         mcap::records::Record::Chunk { header, data } if header.compression.is_empty() => {
             plain(&header, &data, record)
@@ -108,6 +111,43 @@ fn compressed(
                 input = &input[n..];
             }
             LinearReadEvent::Record { opcode, data } => record(opcode, data),
+        }
+    }
+    Ok(())
+}
+
+/// Checks that every length field of a schema, channel or chunk record fits
+/// inside the record, before mcap's parser (which reserves whatever a length
+/// says) sees it; `Err` names the first field that does not.
+pub fn lengths_fit(opcode: u8, body: &[u8]) -> Result<(), &'static str> {
+    use mcap::records::op;
+    let u32_at = |pos: usize| {
+        body.get(pos..pos + 4)
+            .and_then(|b| <[u8; 4]>::try_from(b).ok())
+            .map(u32::from_le_bytes)
+    };
+    let (mut pos, fields): (usize, &[&'static str]) = match opcode {
+        op::SCHEMA => (2, &["name", "encoding", "data"]),
+        op::CHANNEL => (4, &["topic", "message encoding", "metadata"]),
+        // start time, end time, uncompressed size, CRC; then the compression.
+        op::CHUNK => (28, &["compression"]),
+        _ => return Ok(()),
+    };
+    for &what in fields {
+        let len = u32_at(pos).ok_or(what)?;
+        pos = pos + 4 + len as usize;
+        if pos > body.len() {
+            return Err(what);
+        }
+    }
+    if opcode == op::CHUNK {
+        let size = body
+            .get(pos..pos + 8)
+            .and_then(|b| <[u8; 8]>::try_from(b).ok())
+            .map(u64::from_le_bytes)
+            .ok_or("compressed size")?;
+        if size > (body.len() - pos - 8) as u64 {
+            return Err("records");
         }
     }
     Ok(())

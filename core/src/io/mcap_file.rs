@@ -10,7 +10,7 @@ use std::io::Read;
 use mcap::records::Record;
 use mcap::sans_io::linear_reader::{LinearReadEvent, LinearReader, LinearReaderOptions};
 
-use super::chunks::{ChunkError, for_each_record};
+use super::chunks::{ChunkError, for_each_record, lengths_fit};
 use super::{ChannelSchema, MessageDecoder, decoder_for};
 use crate::demo::{RawDemo, TimeSource};
 use crate::error::{Error, Location, Result};
@@ -318,6 +318,10 @@ impl Collector<'_> {
             Err(ChunkError::Mcap(e)) => {
                 Err(self.pending.take().unwrap_or_else(|| self.mcap_error(&e)))
             }
+            Err(ChunkError::Malformed(field)) => Err(Error::Mcap {
+                at: self.at(),
+                reason: format!("a chunk record is malformed: its {field} runs past the record"),
+            }),
             Err(ChunkError::Overrun { opcode, len, left }) => Err(Error::Mcap {
                 at: self.at(),
                 reason: format!(
@@ -441,29 +445,6 @@ fn finish_stream(
         positions: s.positions,
         time_source,
     }
-}
-
-/// Checks that every length-prefixed field of a schema or channel record
-/// fits inside the record; `Err` names the first that does not.
-fn lengths_fit(opcode: u8, body: &[u8]) -> std::result::Result<(), &'static str> {
-    use mcap::records::op;
-    let (mut pos, fields) = match opcode {
-        op::SCHEMA => (2, ["name", "encoding", "data"]),
-        op::CHANNEL => (4, ["topic", "message encoding", "metadata"]),
-        _ => return Ok(()),
-    };
-    for what in fields {
-        let len = body
-            .get(pos..pos + 4)
-            .and_then(|b| <[u8; 4]>::try_from(b).ok())
-            .map(u32::from_le_bytes)
-            .ok_or(what)?;
-        pos = pos + 4 + len as usize;
-        if pos > body.len() {
-            return Err(what);
-        }
-    }
-    Ok(())
 }
 
 /// Reads what is available, retrying on interruption; 0 means end of input.
