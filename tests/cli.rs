@@ -276,8 +276,19 @@ fn one_demo_is_told_that_s_needs_two() {
 }
 
 #[test]
-fn no_subcommand_prints_help() {
-    let out = dmpscope(&[]);
+fn help_lists_the_app_and_the_subcommands() {
+    let out = dmpscope(&["--help"]);
     assert!(out.status.success());
-    assert!(text(&out.stdout).contains("Usage: dmpscope"));
+    let help = text(&out.stdout);
+    assert!(help.contains("Usage: dmpscope [FILES]..."), "{help}");
+    for sub in [
+        "info",
+        "landscape",
+        "extract",
+        "regen",
+        "bench",
+        "gen-sample",
+    ] {
+        assert!(help.contains(sub), "{help}");
+    }
 }

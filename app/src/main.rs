@@ -1,7 +1,6 @@
-//! `dmpscope`: the command line (and, from a later release, the desktop app).
-//!
-//! Results go to stdout (or `--out`), diagnostics and progress to stderr, as
-//! the `mcap` CLI does. With no subcommand it prints help.
+//! `dmpscope`: the desktop app (no subcommand: `dmpscope [FILES...]`) and
+//! the command line (subcommands). Results go to stdout (or `--out`),
+//! diagnostics and progress to stderr, as the `mcap` CLI does.
 
 mod cli;
 
@@ -11,7 +10,11 @@ use clap::Parser;
 
 fn main() -> ExitCode {
     let args = cli::Cli::parse();
-    match cli::run(args) {
+    let result = match args.command {
+        None => dmpscope::gui::run(args.files),
+        Some(_) => cli::run(args),
+    };
+    match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {
             eprintln!("error: {err:#}");

@@ -313,6 +313,18 @@ impl LandscapeJob {
         self.is_done()
     }
 
+    /// Computes up to `max_points` more points on all cores (with the
+    /// `parallel` feature; on this thread without). Returns whether the job
+    /// is done. Between calls the caller may look at [`LandscapeJob::landscape`].
+    pub fn step_par(&mut self, max_points: usize) -> bool {
+        let end = (self.next + max_points.max(1)).min(self.order.len());
+        let batch = &self.order[self.next..end];
+        let values = eval_tile(&self.model, &self.landscape, batch);
+        store(&mut self.landscape, batch, &values);
+        self.next = end;
+        self.is_done()
+    }
+
     /// Finishes the job, on all cores with the `parallel` feature, calling
     /// `progress(done, total)` between tiles and stopping with
     /// [`Error::Cancelled`] once `cancel` is set (the points done so far stay).
@@ -326,11 +338,7 @@ impl LandscapeJob {
             if cancel.load(Ordering::Relaxed) {
                 return Err(Error::Cancelled);
             }
-            let end = (self.next + TILE).min(self.order.len());
-            let batch = &self.order[self.next..end];
-            let values = eval_tile(&self.model, &self.landscape, batch);
-            store(&mut self.landscape, batch, &values);
-            self.next = end;
+            self.step_par(TILE);
             progress(self.next, self.order.len());
         }
         Ok(())

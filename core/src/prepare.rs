@@ -8,6 +8,10 @@ use crate::demo::{RawDemo, median, stamp_intervals_s};
 use crate::error::{Error, Location, Result};
 use crate::savgol::SavGol;
 
+/// The most points a demo is resampled onto (1000 s at 1 kHz): more means
+/// stamps with gaps far longer than their interval, not a demonstration.
+pub const MAX_RESAMPLED: usize = 1_000_000;
+
 /// Settings of the preprocessing (method.md section 2; the paper's values
 /// are the defaults).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -146,10 +150,13 @@ pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
     let total = t[t.len() - 1];
     let h = median(&stamp_intervals_s(&stamps));
     let ratio = total / h;
-    if !ratio.is_finite() || ratio > 1e8 {
+    if !ratio.is_finite() || ratio > MAX_RESAMPLED as f64 {
         return Err(Error::BadTiming {
             demo: raw.name.clone(),
-            reason: format!("duration {total} s over median interval {h} s gives no usable grid"),
+            reason: format!(
+                "duration {total} s over median interval {h} s would need {ratio:.0} resampled points \
+                 (at most {MAX_RESAMPLED}): the stamps have gaps far longer than the sampling interval"
+            ),
         });
     }
     let n0 = ratio.round_ties_even() as usize + 1;

@@ -412,3 +412,22 @@ fn a_record_overrunning_its_chunk_is_an_error() {
     }
     assert!(patched > 30, "only {patched} records patched");
 }
+
+/// Found by the fuzzer: stamps 1 us apart with one 10 s gap asked for 1e7
+/// resampled points (seconds of work). Past `MAX_RESAMPLED` it is an error,
+/// at once.
+#[test]
+fn a_gap_far_longer_than_the_sampling_interval_is_an_error_not_a_hang() {
+    let mut stamps: Vec<i64> = (0..40).map(|k| k * 1_000).collect();
+    stamps.push(10_000_000_000);
+    let positions = vec![[0.0; 3]; stamps.len()];
+    let raw = raw_demo(&stamps, &positions);
+    let start = std::time::Instant::now();
+    let text = prepare_err(&raw);
+    assert!(
+        start.elapsed().as_secs_f64() < 0.5,
+        "took {:?}",
+        start.elapsed()
+    );
+    assert!(text.contains("gaps") && text.contains(&raw.name), "{text}");
+}

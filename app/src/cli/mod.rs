@@ -14,13 +14,17 @@ mod table;
 
 use clap::{CommandFactory, Parser, Subcommand};
 
-/// Turn recordings of human hand motion into DMP gains.
+/// Turn recordings of human hand motion into DMP gains. Without a
+/// subcommand, opens the app on FILES (the bundled sample when none).
 #[derive(Debug, Parser)]
-#[command(name = "dmpscope", version, about, long_about = None)]
+#[command(name = "dmpscope", version, about, long_about = None, args_conflicts_with_subcommands = true)]
 pub struct Cli {
-    /// What to do; without one, print this help.
+    /// What to do; without one, open the app.
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// Recordings to open in the app.
+    #[arg(value_name = "FILES")]
+    pub files: Vec<std::path::PathBuf>,
 }
 
 /// The subcommands.

@@ -1,0 +1,293 @@
+//! A heat map of one landscape quantity over (D/M, K/M): a texture (one
+//! texel per grid point, viridis, linear or log colour), axes, a colour bar,
+//! labelled markers, a hover read-out of sum d, S and J, and the operating
+//! point, which a click or drag moves.
+
+use dmpscope_core::landscape::{Axis, AxisScale, Grid};
+use eframe::egui::{
+    self, Align2, Color32, ColorImage, FontId, Pos2, Rect, Sense, Stroke, TextureHandle,
+    TextureOptions, Vec2,
+};
+
+/// A labelled point on the map.
+pub struct Marker {
+    /// The label.
+    pub label: String,
+    /// D/M.
+    pub dm: f64,
+    /// K/M.
+    pub km: f64,
+    /// Its colour.
+    pub colour: Color32,
+}
+
+/// The texture of one map, rebuilt only when its key changes.
+#[derive(Default)]
+pub struct Cache {
+    key: Option<(u64, u64, bool)>,
+    texture: Option<TextureHandle>,
+    range: (f64, f64),
+}
+
+/// What a map shows.
+pub struct MapInput<'a> {
+    /// The title above it.
+    pub title: &'a str,
+    /// Values `[i_dm][i_km]` row-major (NaN: not computed).
+    pub values: &'a [f64],
+    /// Identifies `values` (snapshot version, k bits) for the cache.
+    pub key: (u64, u64),
+    /// The grid.
+    pub grid: Grid,
+    /// Colour on a log scale.
+    pub log_colour: bool,
+    /// Read-out of `(sum d, S, J)` at a grid point.
+    pub readout: &'a dyn Fn(usize, usize) -> (f64, f64, f64),
+}
+
+const AXIS_MARGIN: f32 = 44.0;
+const BAR_WIDTH: f32 = 14.0;
+const BAR_MARGIN: f32 = 58.0;
+
+/// The fraction along an axis of a value, at texel centres (0..1).
+fn fraction(axis: &Axis, v: f64) -> f64 {
+    let (lo, hi) = (axis.to_coord(axis.lo), axis.to_coord(axis.hi));
+    let f = (axis.to_coord(v) - lo) / (hi - lo);
+    (f * (axis.n - 1) as f64 + 0.5) / axis.n as f64
+}
+
+/// The value at a fraction along an axis (inverse of [`fraction`]), clamped.
+fn value_at(axis: &Axis, f: f64) -> f64 {
+    let (lo, hi) = (axis.to_coord(axis.lo), axis.to_coord(axis.hi));
+    let t = ((f * axis.n as f64 - 0.5) / (axis.n - 1) as f64).clamp(0.0, 1.0);
+    axis.from_coord(lo + t * (hi - lo)).clamp(axis.lo, axis.hi)
+}
+
+fn colour(t: f64) -> Color32 {
+    let c = colorous::VIRIDIS.eval_continuous(t.clamp(0.0, 1.0));
+    Color32::from_rgb(c.r, c.g, c.b)
+}
+
+fn transform(v: f64, log: bool) -> f64 {
+    if log {
+        if v > 0.0 { v.ln() } else { f64::NAN }
+    } else {
+        v
+    }
+}
+
+fn build(ctx: &egui::Context, input: &MapInput<'_>) -> (TextureHandle, (f64, f64)) {
+    let (n_dm, n_km) = (input.grid.dm.n, input.grid.km.n);
+    let t: Vec<f64> = input
+        .values
+        .iter()
+        .map(|&v| transform(v, input.log_colour))
+        .collect();
+    let (lo, hi) = t
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let span = if hi > lo { hi - lo } else { 1.0 };
+    let mut pixels = vec![Color32::from_gray(40); n_dm * n_km];
+    for i in 0..n_dm {
+        for j in 0..n_km {
+            let v = t[i * n_km + j];
+            if v.is_finite() {
+                // x = D/M index, y = K/M index from the top (high K/M up).
+                pixels[(n_km - 1 - j) * n_dm + i] = colour((v - lo) / span);
+            }
+        }
+    }
+    let image = ColorImage::new([n_dm, n_km], pixels);
+    let texture = ctx.load_texture(input.title, image, TextureOptions::NEAREST);
+    (texture, (lo, hi))
+}
+
+/// Tick values of an axis: decades on a log axis, five steps on a linear one.
+fn ticks(axis: &Axis) -> Vec<f64> {
+    match axis.scale {
+        AxisScale::Log => {
+            let (a, b) = (
+                axis.lo.log10().ceil() as i32,
+                axis.hi.log10().floor() as i32,
+            );
+            (a..=b).map(|e| 10f64.powi(e)).collect()
+        }
+        AxisScale::Linear => (0..=4)
+            .map(|i| axis.lo + (axis.hi - axis.lo) * i as f64 / 4.0)
+            .collect(),
+    }
+}
+
+fn tick_label(v: f64) -> String {
+    if v >= 1.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// The side of a map that fits in `size` with its axes, title and colour bar.
+pub fn side_for(size: Vec2) -> f32 {
+    (size.x - AXIS_MARGIN - BAR_MARGIN).min(size.y - 50.0)
+}
+
+/// Shows the map (`side` pixels square); returns true when the user moved
+/// the operating point.
+pub fn show(
+    ui: &mut egui::Ui,
+    cache: &mut Cache,
+    input: &MapInput<'_>,
+    markers: &[Marker],
+    op: &mut (f64, f64),
+    side: f32,
+) -> bool {
+    let key = (input.key.0, input.key.1, input.log_colour);
+    if cache.key != Some(key) || cache.texture.is_none() {
+        let (texture, range) = build(ui.ctx(), input);
+        cache.texture = Some(texture);
+        cache.range = range;
+        cache.key = Some(key);
+    }
+    ui.label(egui::RichText::new(input.title).strong());
+    let side = side.max(80.0);
+    let (outer, _) = ui.allocate_exact_size(
+        Vec2::new(side + AXIS_MARGIN + BAR_MARGIN, side + 30.0),
+        Sense::hover(),
+    );
+    let map = Rect::from_min_size(outer.min + Vec2::new(AXIS_MARGIN, 4.0), Vec2::splat(side));
+    let response = ui.interact(
+        map,
+        ui.scope_id().with(input.title),
+        Sense::click_and_drag(),
+    );
+    let painter = ui.painter_at(outer);
+    if let Some(texture) = &cache.texture {
+        painter.image(
+            texture.id(),
+            map,
+            Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
+            Color32::WHITE,
+        );
+    }
+    let grid = input.grid;
+    let to_screen = |dm: f64, km: f64| {
+        Pos2::new(
+            map.left() + fraction(&grid.dm, dm) as f32 * map.width(),
+            map.bottom() - fraction(&grid.km, km) as f32 * map.height(),
+        )
+    };
+    let text = ui.visuals().text_color();
+    let font = FontId::proportional(11.0);
+    for v in ticks(&grid.dm) {
+        let p = to_screen(v, grid.km.lo);
+        painter.text(
+            Pos2::new(p.x, map.bottom() + 3.0),
+            Align2::CENTER_TOP,
+            tick_label(v),
+            font.clone(),
+            text,
+        );
+    }
+    for v in ticks(&grid.km) {
+        let p = to_screen(grid.dm.lo, v);
+        painter.text(
+            Pos2::new(map.left() - 4.0, p.y),
+            Align2::RIGHT_CENTER,
+            tick_label(v),
+            font.clone(),
+            text,
+        );
+    }
+    painter.text(
+        Pos2::new(map.center().x, map.bottom() + 16.0),
+        Align2::CENTER_TOP,
+        "D/M",
+        font.clone(),
+        text,
+    );
+    painter.text(
+        Pos2::new(outer.left() + 2.0, map.top()),
+        Align2::LEFT_TOP,
+        "K/M",
+        font.clone(),
+        text,
+    );
+    // Colour bar.
+    let bar = Rect::from_min_size(
+        Pos2::new(map.right() + 8.0, map.top()),
+        Vec2::new(BAR_WIDTH, side),
+    );
+    let steps = 48;
+    for s in 0..steps {
+        let t0 = s as f32 / steps as f32;
+        let r = Rect::from_min_max(
+            Pos2::new(
+                bar.left(),
+                bar.bottom() - (t0 + 1.0 / steps as f32) * bar.height(),
+            ),
+            Pos2::new(bar.right(), bar.bottom() - t0 * bar.height()),
+        );
+        painter.rect_filled(r, 0.0, colour(f64::from(t0)));
+    }
+    let (lo, hi) = cache.range;
+    let shown = |v: f64| if input.log_colour { v.exp() } else { v };
+    if lo.is_finite() {
+        painter.text(
+            bar.right_top() + Vec2::new(3.0, 0.0),
+            Align2::LEFT_TOP,
+            format!("{:.3}", shown(hi)),
+            font.clone(),
+            text,
+        );
+        painter.text(
+            bar.right_bottom() + Vec2::new(3.0, 0.0),
+            Align2::LEFT_BOTTOM,
+            format!("{:.3}", shown(lo)),
+            font.clone(),
+            text,
+        );
+    }
+    for m in markers {
+        let p = to_screen(m.dm, m.km);
+        painter.circle_stroke(p, 4.0, Stroke::new(1.5, m.colour));
+        painter.text(
+            p + Vec2::new(5.0, -5.0),
+            Align2::LEFT_BOTTOM,
+            &m.label,
+            font.clone(),
+            m.colour,
+        );
+    }
+    let p = to_screen(op.0, op.1);
+    painter.circle_filled(p, 5.0, Color32::WHITE);
+    painter.circle_stroke(p, 5.0, Stroke::new(1.5, Color32::BLACK));
+    let at = |pos: Pos2| {
+        let fx = f64::from((pos.x - map.left()) / map.width());
+        let fy = f64::from((map.bottom() - pos.y) / map.height());
+        (value_at(&grid.dm, fx), value_at(&grid.km, fy))
+    };
+    if let Some(pos) = response.hover_pos() {
+        let (dm, km) = at(pos);
+        let (i, j) = (nearest(&grid.dm, dm), nearest(&grid.km, km));
+        let (d, s, jv) = (input.readout)(i, j);
+        response.clone().on_hover_text_at_pointer(format!(
+            "D/M {dm:.3}  K/M {km:.3}\nsum d {d:.5} m\nS {s:.5}\nJ {jv:.5}"
+        ));
+    }
+    if (response.dragged() || response.clicked())
+        && let Some(pos) = response.interact_pointer_pos()
+    {
+        *op = at(pos);
+        return true;
+    }
+    false
+}
+
+/// The grid index nearest a value.
+pub fn nearest(axis: &Axis, v: f64) -> usize {
+    let f = fraction(axis, v) * axis.n as f64;
+    (f.floor().max(0.0) as usize).min(axis.n - 1)
+}

@@ -1,0 +1,38 @@
+//! The desktop app: demos, the d / S / J heat maps with a draggable
+//! operating point, time plots and Table I, all live.
+//!
+//! `app.rs` holds the state and lays out the frame; `worker.rs` fills the
+//! landscape off the frame; `heatmap.rs`, `plots.rs` and `table.rs` are the
+//! views; `settings.rs` what is persisted; `loading.rs` turns files into
+//! demos.
+
+mod app;
+mod heatmap;
+mod loading;
+mod plots;
+mod settings;
+mod table;
+mod worker;
+
+pub use app::DmpApp;
+pub use settings::Settings;
+
+use std::path::PathBuf;
+
+use eframe::egui;
+
+/// Opens the app window on `files` (the bundled sample when empty).
+pub fn run(files: Vec<PathBuf>) -> anyhow::Result<()> {
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_inner_size([1280.0, 800.0])
+            .with_title("dmpscope"),
+        ..Default::default()
+    };
+    eframe::run_native(
+        "dmpscope",
+        options,
+        Box::new(move |cc| Ok(Box::new(DmpApp::new(cc, files)))),
+    )
+    .map_err(|e| anyhow::anyhow!("cannot open the app window: {e}"))
+}

@@ -1,0 +1,65 @@
+//! Time plots of one demo against its regeneration at the operating point:
+//! position, velocity and acceleration per axis (the paper's Fig. 4).
+
+use dmpscope_core::{PreparedDemo, Rollout};
+use eframe::egui::{self, Color32};
+use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints};
+
+const AXES: [(&str, Color32); 3] = [
+    ("x", Color32::from_rgb(230, 90, 80)),
+    ("y", Color32::from_rgb(90, 190, 100)),
+    ("z", Color32::from_rgb(90, 140, 230)),
+];
+
+/// One plot: its label, the demo's series, the regenerated series and the
+/// factor from unit time to seconds.
+type Row<'a> = (&'a str, &'a [[f64; 3]], &'a [[f64; 3]], f64);
+
+/// Shows the three plots for `demo` and its `rollout`, stacked, sharing the
+/// time axis (seconds of the demonstration).
+pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout) {
+    let n = demo.len();
+    let t_of = |k: usize| demo.duration_s * k as f64 / (n - 1) as f64;
+    let height = ((ui.available_height() - 12.0) / 3.0).max(60.0);
+    let group = ui.scope_id().with("time plots");
+    let rows: [Row<'_>; 3] = [
+        ("position [m]", &demo.y_raw, &rollout.y, 1.0),
+        (
+            "velocity [m/s]",
+            &demo.yd,
+            &rollout.v,
+            1.0 / demo.duration_s,
+        ),
+        (
+            "acceleration [m/s²]",
+            &demo.ydd,
+            &rollout.a,
+            1.0 / (demo.duration_s * demo.duration_s),
+        ),
+    ];
+    for (label, target, regen, scale) in rows {
+        Plot::new(label)
+            .height(height)
+            .legend(Legend::default())
+            .link_axis(group, [true, false])
+            .link_cursor(group, [true, false])
+            .y_axis_label(label)
+            .allow_scroll(false)
+            .show(ui, |plot| {
+                for (ax, (name, colour)) in AXES.iter().enumerate() {
+                    let series = |v: &[[f64; 3]]| -> PlotPoints<'static> {
+                        v.iter()
+                            .enumerate()
+                            .map(|(k, p)| [t_of(k), p[ax] * scale])
+                            .collect()
+                    };
+                    plot.line(Line::new(format!("demo {name}"), series(target)).color(*colour));
+                    plot.line(
+                        Line::new(format!("DMP {name}"), series(regen))
+                            .color(*colour)
+                            .style(LineStyle::dashed_loose()),
+                    );
+                }
+            });
+    }
+}
