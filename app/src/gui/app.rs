@@ -11,6 +11,7 @@ use dmpscope_core::presets::PAPER_PRESETS;
 use dmpscope_core::{Extraction, Model, PrepSettings, TableRow, extract, prepare};
 use eframe::egui::{self, Color32};
 
+use super::frame_log::FrameLog;
 use super::heatmap::{self, Cache, MapInput, Marker};
 use super::loading::{DemoEntry, load_files, sample_path};
 use super::settings::Settings;
@@ -45,6 +46,7 @@ pub struct DmpApp {
     preset_rows: Vec<TableRow>,
     selected: usize,
     caches: [Cache; 3],
+    frame_log: Option<FrameLog>,
 }
 
 impl DmpApp {
@@ -79,6 +81,7 @@ impl DmpApp {
             preset_rows: Vec::new(),
             selected: 0,
             caches: Default::default(),
+            frame_log: FrameLog::from_env(),
         }
     }
 
@@ -492,8 +495,17 @@ impl DmpApp {
 }
 
 impl eframe::App for DmpApp {
-    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
+        let complete = self.landscape_complete();
+        if let Some(log) = &mut self.frame_log {
+            // Only frames after the landscape is complete: the drag.
+            if complete {
+                log.frame(frame.info().cpu_usage);
+            } else {
+                log.reset();
+            }
+        }
         let dropped: Vec<PathBuf> = ctx.input(|i| {
             i.raw
                 .dropped_files

@@ -7,6 +7,7 @@
 //! demos.
 
 mod app;
+mod frame_log;
 mod heatmap;
 mod loading;
 mod plots;

@@ -1,0 +1,73 @@
+//! Frame timing for measurements: with `DMPSCOPE_FRAME_LOG=path` the app
+//! records the interval between frames and egui's CPU time per frame and
+//! rewrites a summary (medians, 95th percentiles, maxima) to `path` every
+//! 60 frames.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// The log, when asked for.
+pub struct FrameLog {
+    path: PathBuf,
+    last: Option<Instant>,
+    intervals_ms: Vec<f64>,
+    cpu_ms: Vec<f64>,
+}
+
+impl FrameLog {
+    /// The log named by `DMPSCOPE_FRAME_LOG`, if set.
+    pub fn from_env() -> Option<Self> {
+        let path = std::env::var_os("DMPSCOPE_FRAME_LOG")?;
+        Some(Self {
+            path: PathBuf::from(path),
+            last: None,
+            intervals_ms: Vec::new(),
+            cpu_ms: Vec::new(),
+        })
+    }
+
+    /// Records a frame; `cpu_s` is eframe's CPU time of the previous frame.
+    pub fn frame(&mut self, cpu_s: Option<f32>) {
+        let now = Instant::now();
+        if let Some(last) = self.last {
+            self.intervals_ms
+                .push(now.duration_since(last).as_secs_f64() * 1e3);
+        }
+        self.last = Some(now);
+        if let Some(cpu) = cpu_s {
+            self.cpu_ms.push(f64::from(cpu) * 1e3);
+        }
+        if self.intervals_ms.len() % 60 == 59 {
+            let text = format!(
+                "frames {}\ninterval_ms {}\ncpu_ms {}\n",
+                self.intervals_ms.len(),
+                summary(&self.intervals_ms),
+                summary(&self.cpu_ms)
+            );
+            let _ = std::fs::write(&self.path, text);
+        }
+    }
+
+    /// Forgets what was recorded (e.g. once the landscape is complete).
+    pub fn reset(&mut self) {
+        self.intervals_ms.clear();
+        self.cpu_ms.clear();
+        self.last = None;
+    }
+}
+
+fn summary(v: &[f64]) -> String {
+    let mut s = v.to_vec();
+    s.sort_by(f64::total_cmp);
+    let at = |q: f64| {
+        s.get(((s.len() as f64 - 1.0) * q).round() as usize)
+            .copied()
+            .unwrap_or(0.0)
+    };
+    format!(
+        "median {:.2} p95 {:.2} max {:.2}",
+        at(0.5),
+        at(0.95),
+        at(1.0)
+    )
+}
