@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Measures the app's frame time while the operating point is dragged across
+# the J map, at 1280x800 under Xvfb with software rendering.
+# Needs: xvfb, xdotool, a release build (cargo build --release).
+# Usage: xvfb-run -s "-screen 0 1280x800x24" tests/frame_time.sh
+# Prints the summary the app writes with DMPSCOPE_FRAME_LOG (frame intervals
+# and egui CPU time per frame, recorded once the landscape is complete).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+log=$(mktemp)
+export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d)}
+DMPSCOPE_FRAME_LOG="$log" ./target/release/dmpscope > /dev/null 2>&1 &
+app=$!
+sleep 12                       # the landscape fills in the background
+# The J map sits at about x 382..612, y 55..285 at 1280x800.
+xdotool mousemove 450 200 mousedown 1
+for i in $(seq 1 400); do
+  xdotool mousemove $(( 400 + (i * 7) % 200 )) $(( 80 + (i * 5) % 190 ))
+  sleep 0.005
+done
+xdotool mouseup 1
+sleep 1
+kill "$app"
+cat "$log"
