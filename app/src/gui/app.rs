@@ -261,7 +261,7 @@ impl DmpApp {
             .max_height(220.0)
             .show(ui, |ui| {
                 for entry in &mut self.demos {
-                    let info = entry.raw.info();
+                    let info = &entry.info;
                     let text = format!(
                         "{}  ({} samples, {:.2} s)",
                         info.name, info.n_samples, info.duration_s

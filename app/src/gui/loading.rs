@@ -3,14 +3,16 @@
 
 use std::path::{Path, PathBuf};
 
-use dmpscope_core::RawDemo;
 use dmpscope_core::io::{LoadOptions, csv::load_csv, load_path_with};
+use dmpscope_core::{DemoInfo, RawDemo};
 
 /// A demo in the demos panel.
 #[derive(Clone, Debug)]
 pub struct DemoEntry {
     /// The demo as loaded.
     pub raw: RawDemo,
+    /// Its summary for the panel, computed once at load (not per frame).
+    pub info: DemoInfo,
     /// Whether it takes part in the model.
     pub included: bool,
 }
@@ -57,6 +59,7 @@ pub fn load_files(files: &[PathBuf]) -> LoadResult {
             Ok((demos, warnings)) => {
                 out.messages.extend(warnings);
                 out.demos.extend(demos.into_iter().map(|raw| DemoEntry {
+                    info: raw.info(),
                     raw,
                     included: true,
                 }));
