@@ -1,18 +1,22 @@
 //! The desktop app: demos, the d / S / J heat maps with a draggable
 //! operating point, time plots and Table I, all live.
 //!
-//! `app.rs` holds the state and lays out the frame; `worker.rs` fills the
-//! landscape off the frame; `heatmap.rs`, `plots.rs` and `table.rs` are the
-//! views; `settings.rs` what is persisted; `loading.rs` turns files into
-//! demos.
+//! `app.rs` holds the state, `frame.rs` lays out the frame and `side.rs`
+//! the side panel; `worker.rs` fills the landscape off the frame;
+//! `heatmap.rs`, `plots.rs`, `table.rs` and `view3d/` (a custom wgpu
+//! pipeline) are the views; `settings.rs` what is persisted; `loading.rs`
+//! turns files into demos.
 
 mod app;
+mod frame;
 mod frame_log;
 mod heatmap;
 mod loading;
 mod plots;
 mod settings;
+mod side;
 mod table;
+mod view3d;
 mod worker;
 
 pub use app::DmpApp;

@@ -3,7 +3,7 @@
 
 use dmpscope_core::{PreparedDemo, Rollout};
 use eframe::egui::{self, Color32};
-use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints};
+use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints, VLine};
 
 const AXES: [(&str, Color32); 3] = [
     ("x", Color32::from_rgb(230, 90, 80)),
@@ -16,8 +16,9 @@ const AXES: [(&str, Color32); 3] = [
 type Row<'a> = (&'a str, &'a [[f64; 3]], &'a [[f64; 3]], f64);
 
 /// Shows the three plots for `demo` and its `rollout`, stacked, sharing the
-/// time axis (seconds of the demonstration).
-pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout) {
+/// time axis (seconds of the demonstration), with a cursor at unit time
+/// `t`. Returns the unit time under the pointer while it is over a plot.
+pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout, t: f64) -> Option<f64> {
     let n = demo.len();
     let t_of = |k: usize| demo.duration_s * k as f64 / (n - 1) as f64;
     let height = ((ui.available_height() - 12.0) / 3.0).max(60.0);
@@ -37,8 +38,9 @@ pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout) {
             1.0 / (demo.duration_s * demo.duration_s),
         ),
     ];
+    let mut hovered = None;
     for (label, target, regen, scale) in rows {
-        Plot::new(label)
+        let response = Plot::new(label)
             .height(height)
             .legend(Legend::default())
             .link_axis(group, [true, false])
@@ -46,6 +48,11 @@ pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout) {
             .y_axis_label(label)
             .allow_scroll(false)
             .show(ui, |plot| {
+                plot.vline(
+                    VLine::new("time", t * demo.duration_s)
+                        .color(Color32::from_gray(200))
+                        .width(1.0),
+                );
                 for (ax, (name, colour)) in AXES.iter().enumerate() {
                     let series = |v: &[[f64; 3]]| -> PlotPoints<'static> {
                         v.iter()
@@ -60,6 +67,13 @@ pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout) {
                             .style(LineStyle::dashed_loose()),
                     );
                 }
+                plot.pointer_coordinate()
             });
+        if response.response.hovered()
+            && let Some(p) = response.inner
+        {
+            hovered = Some((p.x / demo.duration_s).clamp(0.0, 1.0));
+        }
     }
+    hovered
 }

@@ -1,0 +1,352 @@
+//! What the 3D view draws, as screen-space line segments: a ground grid and
+//! axes, each demo (solid) and its regeneration at the operating point
+//! (dashed, lighter, same hue), start and goal markers, and the time cursor.
+//! Coordinates are relative to a fixed scene origin so f32 keeps
+//! sub-millimetre precision far from the tracker's origin.
+
+use dmpscope_core::{PreparedDemo, Rollout};
+use glam::Vec3;
+
+use super::camera::Bounds;
+
+/// One segment as the GPU reads it (see `lines.wgsl`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
+pub struct Segment {
+    /// First end, scene coordinates.
+    pub p0: [f32; 3],
+    /// Second end.
+    pub p1: [f32; 3],
+    /// sRGB colour with straight alpha.
+    pub colour: [f32; 4],
+    /// Width in pixels, dash period (0: solid), arc length at p0 and at p1.
+    pub style: [f32; 4],
+}
+
+/// Points drawn per path at most (paths are on a 1001-point grid; a few
+/// hundred points are smooth at any size the view has).
+const MAX_PATH_POINTS: usize = 250;
+
+/// Line widths in physical pixels.
+const WIDTH: f32 = 2.0;
+const WIDTH_SELECTED: f32 = 3.5;
+
+/// The demo paths and their regenerations, in world coordinates (metres).
+pub struct SceneInput<'a> {
+    /// The prepared demos.
+    pub demos: &'a [PreparedDemo],
+    /// Their regenerations at the operating point (same order), if shown.
+    pub regen: &'a [Rollout],
+    /// Which demos are shown.
+    pub visible: &'a [bool],
+    /// The demo the plots show (drawn wider, carries the time cursor).
+    pub selected: usize,
+    /// The time cursor in unit time, 0..=1.
+    pub t: f64,
+    /// sRGB colour per demo.
+    pub colours: &'a [[u8; 3]],
+    /// Pixels per point (widths scale with it).
+    pub pixels_per_point: f32,
+}
+
+/// The scene's frame: the origin subtracted from world points and the box
+/// the camera fits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    /// World point at the scene origin.
+    pub origin: [f64; 3],
+    /// The demos' box in scene coordinates.
+    pub bounds: Bounds,
+    /// The mean displacement from start to goal.
+    pub motion: Vec3,
+}
+
+impl Frame {
+    /// The frame around all demos; `None` without finite points.
+    pub fn of(demos: &[PreparedDemo]) -> Option<Self> {
+        let world = || {
+            demos
+                .iter()
+                .flat_map(|d| d.y_raw.iter().map(|p| add(d.p0, *p)))
+        };
+        let first = world().find(|p| p.iter().all(|c| c.is_finite()))?;
+        let local = |p: [f64; 3]| to_vec(p, first);
+        let b = Bounds::around(world().map(local))?;
+        let c = b.centre();
+        let origin = [
+            first[0] + f64::from(c.x),
+            first[1] + f64::from(c.y),
+            first[2] + f64::from(c.z),
+        ];
+        let bounds = Bounds {
+            min: b.min - c,
+            max: b.max - c,
+        };
+        let sum = demos
+            .iter()
+            .map(|d| to_vec(d.goal, [0.0; 3]))
+            .filter(|v| v.is_finite())
+            .fold(Vec3::ZERO, |a, b| a + b);
+        let motion = sum / demos.len().max(1) as f32;
+        Some(Self {
+            origin,
+            bounds,
+            motion,
+        })
+    }
+
+    /// A world point in scene coordinates.
+    pub fn local(&self, p: [f64; 3]) -> Vec3 {
+        to_vec(p, self.origin)
+    }
+
+    /// The ground grid's spacing: a 1-2-5 step giving about eight cells
+    /// across the demos.
+    pub fn grid_step(&self) -> f32 {
+        let span = (self.bounds.max - self.bounds.min).max_element().max(1e-3);
+        let raw = f64::from(span) / 8.0;
+        let decade = 10f64.powf(raw.log10().floor());
+        let step = [1.0, 2.0, 5.0, 10.0]
+            .into_iter()
+            .map(|m| m * decade)
+            .find(|s| *s >= raw)
+            .unwrap_or(10.0 * decade);
+        step as f32
+    }
+
+    /// The corner of the grid where the axes start.
+    pub fn axes_origin(&self) -> Vec3 {
+        let s = self.grid_step();
+        Vec3::new(
+            (self.bounds.min.x / s).floor() * s,
+            (self.bounds.min.y / s).floor() * s,
+            self.bounds.min.z,
+        )
+    }
+}
+
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn to_vec(p: [f64; 3], origin: [f64; 3]) -> Vec3 {
+    Vec3::new(
+        (p[0] - origin[0]) as f32,
+        (p[1] - origin[1]) as f32,
+        (p[2] - origin[2]) as f32,
+    )
+}
+
+fn rgba(c: [u8; 3], alpha: f32) -> [f32; 4] {
+    [
+        f32::from(c[0]) / 255.0,
+        f32::from(c[1]) / 255.0,
+        f32::from(c[2]) / 255.0,
+        alpha,
+    ]
+}
+
+fn lighter(c: [u8; 3], amount: f32) -> [u8; 3] {
+    c.map(|v| (f32::from(v) + (255.0 - f32::from(v)) * amount).round() as u8)
+}
+
+/// Builds segments in painter's order.
+#[derive(Default)]
+pub struct SegmentList {
+    /// The segments.
+    pub segments: Vec<Segment>,
+}
+
+impl SegmentList {
+    fn line(&mut self, a: Vec3, b: Vec3, colour: [f32; 4], width: f32) {
+        self.segments.push(Segment {
+            p0: a.into(),
+            p1: b.into(),
+            colour,
+            style: [width, 0.0, 0.0, 0.0],
+        });
+    }
+
+    fn dot(&mut self, p: Vec3, colour: [f32; 4], diameter: f32) {
+        self.line(p, p, colour, diameter);
+    }
+
+    /// A polyline through `points` (decimated), dashed when `dash > 0`.
+    fn path(&mut self, points: &[Vec3], colour: [f32; 4], width: f32, dash: f32) {
+        let stride = points.len().div_ceil(MAX_PATH_POINTS).max(1);
+        let mut picked: Vec<Vec3> = points.iter().copied().step_by(stride).collect();
+        if let Some(last) = points.last()
+            && picked.last() != Some(last)
+        {
+            picked.push(*last);
+        }
+        let mut s = 0.0;
+        for w in picked.windows(2) {
+            let len = (w[1] - w[0]).length();
+            self.segments.push(Segment {
+                p0: w[0].into(),
+                p1: w[1].into(),
+                colour,
+                style: [width, dash, s, s + len],
+            });
+            s += len;
+        }
+    }
+}
+
+/// Interpolates a path on the unit-time grid at `t` in 0..=1.
+fn at_time(points: &[Vec3], t: f64) -> Option<Vec3> {
+    let last = points.len().checked_sub(1)?;
+    let x = t.clamp(0.0, 1.0) * last as f64;
+    let i = (x.floor() as usize).min(last);
+    let j = (i + 1).min(last);
+    let f = (x - i as f64) as f32;
+    Some(points[i].lerp(points[j], f))
+}
+
+/// All segments of the scene in `frame`.
+pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
+    let ppp = input.pixels_per_point;
+    let mut out = SegmentList::default();
+
+    // Ground grid and axes.
+    let step = frame.grid_step();
+    let o = frame.axes_origin();
+    let b = frame.bounds;
+    let nx = ((b.max.x - o.x) / step).ceil().max(1.0) as usize;
+    let ny = ((b.max.y - o.y) / step).ceil().max(1.0) as usize;
+    let grey = [0.55, 0.55, 0.6, 0.35];
+    for i in 0..=nx {
+        let x = o.x + i as f32 * step;
+        out.line(
+            Vec3::new(x, o.y, o.z),
+            Vec3::new(x, o.y + ny as f32 * step, o.z),
+            grey,
+            ppp,
+        );
+    }
+    for j in 0..=ny {
+        let y = o.y + j as f32 * step;
+        out.line(
+            Vec3::new(o.x, y, o.z),
+            Vec3::new(o.x + nx as f32 * step, y, o.z),
+            grey,
+            ppp,
+        );
+    }
+    for (axis, colour) in [
+        (Vec3::X, [0.9, 0.35, 0.3, 1.0]),
+        (Vec3::Y, [0.35, 0.8, 0.4, 1.0]),
+        (Vec3::Z, [0.35, 0.55, 0.95, 1.0]),
+    ] {
+        out.line(o, o + axis * step, colour, 2.5 * ppp);
+    }
+
+    // Demos, then regenerations on top, then markers.
+    let shown = |i: usize| input.visible.get(i).copied().unwrap_or(true);
+    let colour_of = |i: usize| {
+        input
+            .colours
+            .get(i % input.colours.len().max(1))
+            .copied()
+            .unwrap_or([200, 200, 200])
+    };
+    let width_of = |i: usize| if i == input.selected { WIDTH_SELECTED } else { WIDTH } * ppp;
+    let dash = frame.bounds.radius() / 30.0;
+    let demo_paths: Vec<Vec<Vec3>> = input
+        .demos
+        .iter()
+        .map(|d| d.y_raw.iter().map(|p| frame.local(add(d.p0, *p))).collect())
+        .collect();
+    let regen_paths: Vec<Vec<Vec3>> = input
+        .demos
+        .iter()
+        .zip(input.regen)
+        .map(|(d, r)| r.y.iter().map(|p| frame.local(add(d.p0, *p))).collect())
+        .collect();
+    for (i, path) in demo_paths.iter().enumerate().filter(|(i, _)| shown(*i)) {
+        out.path(path, rgba(colour_of(i), 1.0), width_of(i), 0.0);
+    }
+    for (i, path) in regen_paths.iter().enumerate().filter(|(i, _)| shown(*i)) {
+        let c = lighter(colour_of(i), 0.45);
+        out.path(path, rgba(c, 0.95), width_of(i), dash);
+    }
+    let dark = [0.08, 0.08, 0.1, 1.0];
+    for (i, d) in input.demos.iter().enumerate().filter(|(i, _)| shown(*i)) {
+        let c = rgba(colour_of(i), 1.0);
+        let start = frame.local(d.p0);
+        let goal = frame.local(add(d.p0, d.goal));
+        // Start: a filled disc; goal: a ring.
+        out.dot(start, dark, 10.0 * ppp);
+        out.dot(start, c, 7.0 * ppp);
+        out.dot(goal, c, 11.0 * ppp);
+        out.dot(goal, dark, 5.0 * ppp);
+    }
+
+    // The time cursor on the selected demo and its regeneration.
+    let sel = input.selected;
+    if shown(sel) {
+        let c = rgba(colour_of(sel), 1.0);
+        for path in [demo_paths.get(sel), regen_paths.get(sel)]
+            .into_iter()
+            .flatten()
+        {
+            if let Some(p) = at_time(path, input.t) {
+                out.dot(p, [1.0, 1.0, 1.0, 1.0], 12.0 * ppp);
+                out.dot(p, c, 8.0 * ppp);
+            }
+        }
+    }
+    out.segments
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_steps_are_1_2_5() {
+        let frame = |span: f32| Frame {
+            origin: [0.0; 3],
+            bounds: Bounds {
+                min: Vec3::ZERO,
+                max: Vec3::new(span, span / 2.0, 0.1),
+            },
+            motion: Vec3::X,
+        };
+        assert!((frame(0.4).grid_step() - 0.05).abs() < 1e-6);
+        assert!((frame(0.8).grid_step() - 0.1).abs() < 1e-6);
+        assert!((frame(1.2).grid_step() - 0.2).abs() < 1e-6);
+    }
+
+    #[test]
+    fn paths_are_decimated_keep_their_ends_and_carry_arc_length() {
+        let points: Vec<Vec3> = (0..1001)
+            .map(|k| Vec3::new(k as f32 * 1e-3, 0.0, 0.0))
+            .collect();
+        let mut list = SegmentList::default();
+        list.path(&points, [1.0; 4], 2.0, 0.01);
+        let segs = &list.segments;
+        assert!(segs.len() <= MAX_PATH_POINTS);
+        assert_eq!(segs[0].p0, [0.0, 0.0, 0.0]);
+        let last = segs.last().expect("segments");
+        assert!((last.p1[0] - 1.0).abs() < 1e-6);
+        assert!(
+            (last.style[3] - 1.0).abs() < 1e-4,
+            "arc length {}",
+            last.style[3]
+        );
+        for w in segs.windows(2) {
+            assert_eq!(w[0].p1, w[1].p0, "a continuous polyline");
+            assert_eq!(w[0].style[3], w[1].style[2]);
+        }
+    }
+
+    #[test]
+    fn the_cursor_interpolates_in_unit_time() {
+        let points = [Vec3::ZERO, Vec3::X, Vec3::new(2.0, 0.0, 0.0)];
+        assert_eq!(at_time(&points, 0.25), Some(Vec3::new(0.5, 0.0, 0.0)));
+        assert_eq!(at_time(&points, 1.5), Some(Vec3::new(2.0, 0.0, 0.0)));
+        assert_eq!(at_time(&[], 0.5), None);
+    }
+}
