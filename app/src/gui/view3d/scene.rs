@@ -109,7 +109,7 @@ impl Frame {
         let step = [1.0, 2.0, 5.0, 10.0]
             .into_iter()
             .map(|m| m * decade)
-            .find(|s| *s >= raw * (1.0 - 1e-9))
+            .find(|s| *s >= raw * (1.0 - 1e-6))
             .unwrap_or(10.0 * decade);
         step as f32
     }
