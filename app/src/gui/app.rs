@@ -12,9 +12,10 @@ use dmpscope_core::{Extraction, Model, PrepSettings, TableRow, extract, prepare}
 use eframe::egui;
 use eframe::egui_wgpu;
 
+use super::file_dialog::Dialogs;
 use super::frame_log::FrameLog;
 use super::heatmap::Cache;
-use super::loading::{DemoEntry, load_files, sample_path};
+use super::loading::{DemoEntry, PendingLoad, Source, sample_source};
 use super::settings::Settings;
 use super::view3d::View3d;
 use super::worker::{Snapshot, Worker};
@@ -35,7 +36,12 @@ pub(super) struct Shown {
 pub struct DmpApp {
     /// The user's settings (persisted).
     pub settings: Settings,
-    pub(super) files: Vec<PathBuf>,
+    /// Names of the sources loaded or loading.
+    pub(super) files: Vec<String>,
+    /// Open and save dialogs under way.
+    pub(super) dialogs: Dialogs,
+    /// Loads under way.
+    pub(super) pending: Vec<PendingLoad>,
     pub(super) demos: Vec<DemoEntry>,
     pub(super) messages: Vec<String>,
     pub(super) model: Option<Arc<Model>>,
@@ -67,17 +73,18 @@ impl DmpApp {
 
     /// The app with explicit settings (tests).
     pub fn with_settings(settings: Settings, files: Vec<PathBuf>) -> Self {
-        let files = if files.is_empty() {
-            vec![sample_path()]
+        let sources = if files.is_empty() {
+            vec![sample_source()]
         } else {
-            files
+            files.into_iter().map(Source::Path).collect()
         };
-        let loaded = load_files(&files);
-        Self {
+        let mut app = Self {
             settings,
-            files,
-            demos: loaded.demos,
-            messages: loaded.messages,
+            files: Vec::new(),
+            pending: Vec::new(),
+            dialogs: Dialogs::default(),
+            demos: Vec::new(),
+            messages: Vec::new(),
             model: None,
             model_inputs: None,
             worker: None,
@@ -89,7 +96,9 @@ impl DmpApp {
             frame_log: FrameLog::from_env(),
             view3d: View3d::new(None),
             t: 0.5,
-        }
+        };
+        app.add_sources(sources, || {});
+        app
     }
 
     /// Draws the 3D view with the wgpu pipeline of `render_state` (none:
@@ -134,17 +143,47 @@ impl DmpApp {
         rows
     }
 
-    /// Adds files (a drop, a dialog) and reloads.
-    pub fn add_files(&mut self, files: Vec<PathBuf>) {
-        let loaded = load_files(&files);
-        self.messages.extend(loaded.messages);
-        self.demos.extend(loaded.demos);
-        self.files.extend(files);
+    /// Adds files (a drop, a dialog, the command line): they load off the
+    /// frame and join the demos when done; `wake` is called then.
+    pub fn add_sources(&mut self, sources: Vec<Source>, wake: impl Fn() + Send + 'static) {
+        if sources.is_empty() {
+            return;
+        }
+        self.files.extend(sources.iter().map(Source::name));
+        self.pending.push(PendingLoad::start(sources, wake));
+    }
+
+    /// Adds files by path (see [`Self::add_sources`]).
+    pub fn add_files(&mut self, files: Vec<PathBuf>, ctx: &egui::Context) {
+        let ctx = ctx.clone();
+        self.add_sources(files.into_iter().map(Source::Path).collect(), move || {
+            ctx.request_repaint();
+        });
+    }
+
+    /// Whether files are still loading.
+    pub fn loading(&self) -> bool {
+        !self.pending.is_empty()
+    }
+
+    fn poll_loads(&mut self) {
+        let mut still = Vec::new();
+        for mut p in std::mem::take(&mut self.pending) {
+            match p.poll() {
+                Some(loaded) => {
+                    self.messages.extend(loaded.messages);
+                    self.demos.extend(loaded.demos);
+                }
+                None => still.push(p),
+            }
+        }
+        self.pending = still;
     }
 
     /// Brings the model, the worker, the extraction and the cached rows up to
     /// date with the settings; cheap when nothing changed.
     pub fn refresh(&mut self, ctx: &egui::Context) {
+        self.poll_loads();
         let inputs = (
             self.demos.iter().map(|d| d.included).collect::<Vec<_>>(),
             self.settings.sg_window,
@@ -262,6 +301,10 @@ impl DmpApp {
     /// Blocks until the landscape is complete (tests and screenshots).
     pub fn wait_for_landscape(&mut self, ctx: &egui::Context) {
         self.refresh(ctx);
+        while self.loading() {
+            std::thread::sleep(std::time::Duration::from_millis(2));
+            self.refresh(ctx);
+        }
         while self.worker.is_some() && !self.landscape_complete() {
             std::thread::sleep(std::time::Duration::from_millis(5));
             self.refresh(ctx);

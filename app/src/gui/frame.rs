@@ -2,8 +2,6 @@
 //! heat maps over the 3D view in the middle, the time plots on the right and
 //! Table I at the bottom.
 
-use std::path::PathBuf;
-
 use dmpscope_core::presets::PAPER_PRESETS;
 use eframe::egui::{self, Color32};
 
@@ -92,44 +90,9 @@ impl eframe::App for DmpApp {
                 log.reset();
             }
         }
-        let dropped: Vec<PathBuf> = ctx.input(|i| {
-            i.raw
-                .dropped_files
-                .iter()
-                .map(|f| f.path().to_path_buf())
-                .filter(|p| !p.as_os_str().is_empty())
-                .collect()
-        });
-        if !dropped.is_empty() {
-            self.add_files(dropped);
-        }
+        self.take_inputs(&ctx);
         self.refresh(&ctx);
-        egui::Panel::top("top").show(ui, |ui| {
-            ui.horizontal(|ui| {
-                ui.strong("dmpscope");
-                ui.label(format!(
-                    "{} file(s), {} demos",
-                    self.files.len(),
-                    self.demos.len()
-                ));
-                if let Some(shown) = &self.shown {
-                    let (done, total) = (shown.snapshot.done, shown.snapshot.total);
-                    if done < total {
-                        ui.add(
-                            egui::ProgressBar::new(done as f32 / total.max(1) as f32)
-                                .desired_width(200.0)
-                                .text(format!("landscape {done}/{total}")),
-                        );
-                        if ui.button("Cancel").clicked()
-                            && let Some(w) = &self.worker
-                        {
-                            w.cancel();
-                        }
-                    }
-                }
-                ui.label("Drop .mcap or .csv files on the window to add them.");
-            });
-        });
+        egui::Panel::top("top").show(ui, |ui| self.top_bar(ui, &ctx));
         egui::Panel::left("side")
             .default_size(330.0)
             .show(ui, |ui| {

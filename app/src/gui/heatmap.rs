@@ -76,13 +76,12 @@ fn transform(v: f64, log: bool) -> f64 {
     }
 }
 
-fn build(ctx: &egui::Context, input: &MapInput<'_>) -> (TextureHandle, (f64, f64)) {
-    let (n_dm, n_km) = (input.grid.dm.n, input.grid.km.n);
-    let t: Vec<f64> = input
-        .values
-        .iter()
-        .map(|&v| transform(v, input.log_colour))
-        .collect();
+/// The map as an image (one pixel per grid point, D/M to the right, K/M
+/// up, viridis, NaN dark grey) and the colour range `(lo, hi)` (of ln v on
+/// a log colour scale).
+pub fn colour_image(values: &[f64], grid: &Grid, log_colour: bool) -> (ColorImage, (f64, f64)) {
+    let (n_dm, n_km) = (grid.dm.n, grid.km.n);
+    let t: Vec<f64> = values.iter().map(|&v| transform(v, log_colour)).collect();
     let (lo, hi) = t
         .iter()
         .filter(|v| v.is_finite())
@@ -93,16 +92,20 @@ fn build(ctx: &egui::Context, input: &MapInput<'_>) -> (TextureHandle, (f64, f64
     let mut pixels = vec![Color32::from_gray(40); n_dm * n_km];
     for i in 0..n_dm {
         for j in 0..n_km {
-            let v = t[i * n_km + j];
+            let v = t.get(i * n_km + j).copied().unwrap_or(f64::NAN);
             if v.is_finite() {
                 // x = D/M index, y = K/M index from the top (high K/M up).
                 pixels[(n_km - 1 - j) * n_dm + i] = colour((v - lo) / span);
             }
         }
     }
-    let image = ColorImage::new([n_dm, n_km], pixels);
+    (ColorImage::new([n_dm, n_km], pixels), (lo, hi))
+}
+
+fn build(ctx: &egui::Context, input: &MapInput<'_>) -> (TextureHandle, (f64, f64)) {
+    let (image, range) = colour_image(input.values, &input.grid, input.log_colour);
     let texture = ctx.load_texture(input.title, image, TextureOptions::NEAREST);
-    (texture, (lo, hi))
+    (texture, range)
 }
 
 /// Tick values of an axis: decades on a log axis, five steps on a linear one.

@@ -1,9 +1,12 @@
-//! Files to demos for the app: MCAP (streamed) or CSV, errors kept as text
-//! to show, never a crash.
+//! Files to demos for the app: MCAP (streamed from a path, or from bytes a
+//! browser handed over) or CSV, errors kept as text to show, never a crash.
+//! Loading runs off the frame ([`PendingLoad`]).
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::mpsc::{Receiver, TryRecvError};
 
-use dmpscope_core::io::{LoadOptions, csv::load_csv, load_path_with};
+use dmpscope_core::io::{LoadOptions, csv::load_csv, load_bytes_with, load_path_with};
 use dmpscope_core::{DemoInfo, RawDemo};
 
 /// A demo in the demos panel.
@@ -26,36 +29,73 @@ pub struct LoadResult {
     pub messages: Vec<String>,
 }
 
-/// The bundled sample, next to the executable's source tree or in the
-/// working directory.
-pub fn sample_path() -> PathBuf {
-    let here = Path::new("assets/reach10.mcap");
-    if here.exists() {
-        return here.to_path_buf();
+/// The bundled sample, built into the program (native and web alike).
+pub fn sample_source() -> Source {
+    static SAMPLE: &[u8] = include_bytes!("../../../assets/reach10.mcap");
+    Source::Bytes {
+        name: "reach10.mcap".into(),
+        bytes: Arc::from(SAMPLE),
     }
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/reach10.mcap")
 }
 
-/// Loads every file; a file that fails adds a message and nothing else.
-pub fn load_files(files: &[PathBuf]) -> LoadResult {
-    let mut out = LoadResult::default();
-    for path in files {
-        let is_csv = path
+/// A recording to load: a file on disk, or bytes with a name (a browser
+/// upload or drop).
+#[derive(Clone, Debug)]
+pub enum Source {
+    /// A path.
+    Path(PathBuf),
+    /// Bytes and the file's name.
+    Bytes {
+        /// The file name (shown, and its extension picks the reader).
+        name: String,
+        /// The contents.
+        bytes: Arc<[u8]>,
+    },
+}
+
+impl Source {
+    /// The name shown for the source.
+    pub fn name(&self) -> String {
+        match self {
+            Self::Path(p) => p.display().to_string(),
+            Self::Bytes { name, .. } => name.clone(),
+        }
+    }
+
+    fn is_csv(&self) -> bool {
+        Path::new(&self.name())
             .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("csv"));
-        let loaded = if is_csv {
-            std::fs::read_to_string(path)
-                .map_err(|e| format!("{}: {e}", path.display()))
-                .and_then(|text| {
-                    load_csv(&path.display().to_string(), &text).map_err(|e| e.to_string())
-                })
+            .is_some_and(|e| e.eq_ignore_ascii_case("csv"))
+    }
+
+    fn load(&self) -> Result<(Vec<RawDemo>, Vec<String>), String> {
+        let name = self.name();
+        let options = LoadOptions::default();
+        if self.is_csv() {
+            let text = match self {
+                Self::Path(p) => std::fs::read_to_string(p).map_err(|e| format!("{name}: {e}"))?,
+                Self::Bytes { bytes, .. } => String::from_utf8(bytes.to_vec())
+                    .map_err(|e| format!("{name}: not UTF-8 text: {e}"))?,
+            };
+            return load_csv(&name, &text)
                 .map(|d| (vec![d], Vec::new()))
-        } else {
-            load_path_with(path, &LoadOptions::default())
-                .map(|l| (l.demos, l.warnings))
-                .map_err(|e| e.to_string())
+                .map_err(|e| e.to_string());
+        }
+        let loaded = match self {
+            Self::Path(p) => load_path_with(p, &options),
+            Self::Bytes { bytes, .. } => load_bytes_with(&name, bytes, &options),
         };
-        match loaded {
+        loaded
+            .map(|l| (l.demos, l.warnings))
+            .map_err(|e| e.to_string())
+    }
+}
+
+/// Loads every source; one that fails adds a message and nothing else.
+pub fn load_sources(sources: &[Source]) -> LoadResult {
+    let mut out = LoadResult::default();
+    for source in sources {
+        match source.load() {
             Ok((demos, warnings)) => {
                 out.messages.extend(warnings);
                 out.demos.extend(demos.into_iter().map(|raw| DemoEntry {
@@ -68,4 +108,66 @@ pub fn load_files(files: &[PathBuf]) -> LoadResult {
         }
     }
     out
+}
+
+/// Sources being loaded off the frame: on a thread natively; in the
+/// browser (no threads) at the first poll.
+pub struct PendingLoad {
+    /// Native: the loading thread's answer.
+    rx: Option<Receiver<LoadResult>>,
+    /// Web: the sources, loaded when first polled.
+    later: Option<Vec<Source>>,
+}
+
+impl PendingLoad {
+    /// Starts loading `sources`; `wake` is called when done.
+    pub fn start(sources: Vec<Source>, wake: impl Fn() + Send + 'static) -> Self {
+        if cfg!(target_arch = "wasm32") {
+            return Self {
+                rx: None,
+                later: Some(sources),
+            };
+        }
+        let (tx, rx) = std::sync::mpsc::channel();
+        let spawned = std::thread::Builder::new()
+            .name("dmpscope load".into())
+            .spawn(move || {
+                let _ = tx.send(load_sources(&sources));
+                wake();
+            });
+        match spawned {
+            Ok(_) => Self {
+                rx: Some(rx),
+                later: None,
+            },
+            Err(e) => {
+                // No thread: the answer is the error, at the next poll.
+                let (tx, rx) = std::sync::mpsc::channel();
+                let _ = tx.send(LoadResult {
+                    demos: Vec::new(),
+                    messages: vec![format!("cannot start loading: {e}")],
+                });
+                Self {
+                    rx: Some(rx),
+                    later: None,
+                }
+            }
+        }
+    }
+
+    /// The result once loading is done.
+    pub fn poll(&mut self) -> Option<LoadResult> {
+        if let Some(sources) = self.later.take() {
+            return Some(load_sources(&sources));
+        }
+        let rx = self.rx.as_ref()?;
+        match rx.try_recv() {
+            Ok(r) => Some(r),
+            Err(TryRecvError::Empty) => None,
+            Err(TryRecvError::Disconnected) => Some(LoadResult {
+                demos: Vec::new(),
+                messages: vec!["loading stopped unexpectedly".into()],
+            }),
+        }
+    }
 }

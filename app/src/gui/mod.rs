@@ -8,6 +8,8 @@
 //! turns files into demos.
 
 mod app;
+mod export;
+mod file_dialog;
 mod frame;
 mod frame_log;
 mod heatmap;
@@ -16,6 +18,7 @@ mod plots;
 mod settings;
 mod side;
 mod table;
+mod top_bar;
 mod view3d;
 mod worker;
 
