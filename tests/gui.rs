@@ -106,3 +106,27 @@ fn changing_k_recombines_j_and_moves_the_optimum() {
     let ours = rows.iter().find(|r| r.name == "Ours").expect("Ours");
     assert_eq!(ours.j, ours.s + 200.0 * ours.d_sum);
 }
+
+#[test]
+fn a_bad_file_is_reported_in_the_window_and_nothing_loaded_is_lost() {
+    let mut h = harness();
+    let dir = std::env::temp_dir().join(format!("dmpscope-gui-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let bad = dir.join("broken.mcap");
+    std::fs::write(&bad, b"\x89MCAP0\r\nthis is not a recording").expect("write");
+    let ctx = h.ctx.clone();
+    h.state_mut().add_files(vec![bad], &ctx);
+    for _ in 0..500 {
+        if !h.state().loading() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.run_steps(1);
+    }
+    h.run_steps(2);
+    assert!(!h.state().loading());
+    assert_eq!(h.state().demo_names().len(), 10, "the sample's demos stay");
+    // The message names the file (get_by_* panics when nothing matches).
+    let _message = h.get_by_label_contains("broken.mcap");
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -95,6 +95,7 @@ impl eframe::App for DmpApp {
         egui::Panel::top("top").show(ui, |ui| self.top_bar(ui, &ctx));
         egui::Panel::left("side")
             .default_size(330.0)
+            .min_size(280.0)
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| self.side_panel(ui, &ctx));
             });
@@ -107,8 +108,11 @@ impl eframe::App for DmpApp {
             .as_ref()
             .map(|m| (0..m.demos().len()).map(|i| m.rollout(i, dm, km)).collect())
             .unwrap_or_default();
+        // Minimum sizes keep the layout from depending on what the first
+        // frames had to show (files load off the frame).
         egui::Panel::right("plots")
             .default_size(380.0)
+            .min_size(340.0)
             .show(ui, |ui| {
                 if let Some(model) = &model {
                     ui.horizontal(|ui| {
@@ -142,6 +146,7 @@ impl eframe::App for DmpApp {
         let rows = self.table_rows();
         egui::Panel::bottom("table")
             .default_size(200.0)
+            .min_size(150.0)
             .show(ui, |ui| {
                 table::show(ui, &rows, &names);
             });
