@@ -12,10 +12,10 @@ export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d)}
 DMPSCOPE_FRAME_LOG="$log" ./target/release/dmpscope > /dev/null 2>&1 &
 app=$!
 sleep 12                       # the landscape fills in the background
-# The J map sits at about x 382..612, y 55..285 at 1280x800.
+# The J map sits at about x 382..556, y 55..230 at 1280x800.
 xdotool mousemove 450 200 mousedown 1
 for i in $(seq 1 400); do
-  xdotool mousemove $(( 400 + (i * 7) % 200 )) $(( 80 + (i * 5) % 190 ))
+  xdotool mousemove $(( 395 + (i * 7) % 150 )) $(( 70 + (i * 5) % 150 ))
   sleep 0.005
 done
 xdotool mouseup 1
