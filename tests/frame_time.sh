@@ -13,11 +13,13 @@ DMPSCOPE_FRAME_LOG="$log" ./target/release/dmpscope > /dev/null 2>&1 &
 app=$!
 sleep 12                       # the landscape fills in the background
 # The J map sits at about x 382..556, y 55..230 at 1280x800.
-xdotool mousemove 450 200 mousedown 1
-for i in $(seq 1 400); do
-  xdotool mousemove $(( 395 + (i * 7) % 150 )) $(( 70 + (i * 5) % 150 ))
-  sleep 0.005
+# One xdotool process chains every move (a process per move would cap the
+# event rate at ~30 per second): a move every 10 ms for 10 s.
+moves=()
+for i in $(seq 1 1000); do
+  moves+=(mousemove $(( 395 + (i * 7) % 150 )) $(( 70 + (i * 5) % 150 )) sleep 0.01)
 done
+xdotool mousemove 450 150 mousedown 1 "${moves[@]}"
 xdotool mouseup 1
 sleep 1
 kill "$app"

@@ -37,7 +37,7 @@ impl FrameLog {
         if let Some(cpu) = cpu_s {
             self.cpu_ms.push(f64::from(cpu) * 1e3);
         }
-        if self.intervals_ms.len() % 60 == 59 {
+        if self.intervals_ms.len() % 10 == 9 {
             let text = format!(
                 "frames {}\ninterval_ms {}\ncpu_ms {}\n",
                 self.intervals_ms.len(),

@@ -11,6 +11,11 @@ const AXES: [(&str, Color32); 3] = [
     ("z", Color32::from_rgb(90, 140, 230)),
 ];
 
+/// Points drawn per line at most: the series are on a 1001-point grid, and a
+/// few hundred points are smooth at the plots' width while a software
+/// rasteriser pays for every triangle (measured with `tests/frame_time.sh`).
+const MAX_POINTS: usize = 300;
+
 /// One plot: its label, the demo's series, the regenerated series and the
 /// factor from unit time to seconds.
 type Row<'a> = (&'a str, &'a [[f64; 3]], &'a [[f64; 3]], f64);
@@ -55,8 +60,11 @@ pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout, t: f64) -
                 );
                 for (ax, (name, colour)) in AXES.iter().enumerate() {
                     let series = |v: &[[f64; 3]]| -> PlotPoints<'static> {
+                        let stride = v.len().div_ceil(MAX_POINTS).max(1);
+                        let last = v.len().saturating_sub(1);
                         v.iter()
                             .enumerate()
+                            .filter(|(k, _)| k % stride == 0 || *k == last)
                             .map(|(k, p)| [t_of(k), p[ax] * scale])
                             .collect()
                     };
