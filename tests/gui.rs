@@ -94,7 +94,10 @@ fn changing_k_recombines_j_and_moves_the_optimum() {
     let mut h = harness();
     let j20 = h.state().extraction.as_ref().expect("optimum").j;
     h.state_mut().settings.k = 200.0;
-    h.run_steps(3);
+    h.run_steps(1);
+    let ctx = h.ctx.clone();
+    h.state_mut().wait_for_landscape(&ctx);
+    h.run_steps(1);
     let x = h
         .state()
         .extraction

@@ -17,8 +17,12 @@ use super::frame_log::FrameLog;
 use super::heatmap::Cache;
 use super::loading::{DemoEntry, PendingLoad, Source, sample_source};
 use super::settings::Settings;
+use super::task::Task;
 use super::view3d::View3d;
 use super::worker::{Snapshot, Worker};
+
+/// An extraction off the frame.
+type ExtractionTask = Task<dmpscope_core::Result<Extraction>>;
 
 pub(super) const SETTINGS_KEY: &str = "dmpscope-settings";
 
@@ -50,6 +54,8 @@ pub struct DmpApp {
     pub(super) shown: Option<Shown>,
     /// The extracted gains for the current k, once the landscape is complete.
     pub extraction: Option<Extraction>,
+    /// The extraction under way, keyed by (k bits, snapshot version).
+    pub(super) extracting: Option<((u64, u64), ExtractionTask)>,
     pub(super) preset_rows: Vec<TableRow>,
     pub(super) selected: usize,
     pub(super) caches: [Cache; 3],
@@ -90,6 +96,7 @@ impl DmpApp {
             worker: None,
             shown: None,
             extraction: None,
+            extracting: None,
             preset_rows: Vec::new(),
             selected: 0,
             caches: Default::default(),
@@ -216,15 +223,48 @@ impl DmpApp {
             self.extraction = None;
             self.refresh_presets();
         }
+        self.refresh_extraction(ctx);
+    }
+
+    /// Extracts the optimum off the frame once the landscape is complete,
+    /// again for each new k; a stale answer (k or landscape changed) is
+    /// dropped.
+    fn refresh_extraction(&mut self, ctx: &egui::Context) {
+        let k = self.settings.k;
+        if let Some((key, task)) = &mut self.extracting
+            && let Some(answer) = task.poll()
+        {
+            let current = self
+                .shown
+                .as_ref()
+                .map(|s| (k.to_bits(), s.snapshot.version));
+            if current == Some(*key) {
+                match answer.and_then(|r| r.map_err(|e| e.to_string())) {
+                    Ok(x) => self.extraction = Some(x),
+                    Err(e) => self.messages.push(format!("extraction: {e}")),
+                }
+            }
+            self.extracting = None;
+        }
         if self.extraction.is_none()
+            && self.extracting.is_none()
             && self.landscape_complete()
             && let (Some(model), Some(shown)) = (&self.model, &self.shown)
         {
-            match extract(model, &shown.snapshot.landscape, k) {
-                Ok(x) => self.extraction = Some(x),
-                Err(e) => self.messages.push(format!("extraction: {e}")),
-            }
+            let key = (k.to_bits(), shown.snapshot.version);
+            let (model, landscape) = (Arc::clone(model), shown.snapshot.landscape.clone());
+            let wake = {
+                let ctx = ctx.clone();
+                move || ctx.request_repaint()
+            };
+            let task = Task::start("extraction", move || extract(&model, &landscape, k), wake);
+            self.extracting = Some((key, task));
         }
+    }
+
+    /// Whether the optimum is being extracted.
+    pub fn extracting(&self) -> bool {
+        self.extracting.is_some()
     }
 
     fn rebuild_model(&mut self) {
@@ -298,7 +338,8 @@ impl DmpApp {
         self.shown = Some(shown);
     }
 
-    /// Blocks until the landscape is complete (tests and screenshots).
+    /// Blocks until loading, the landscape and the extraction are done
+    /// (tests and screenshots).
     pub fn wait_for_landscape(&mut self, ctx: &egui::Context) {
         self.refresh(ctx);
         while self.loading() {
@@ -310,5 +351,9 @@ impl DmpApp {
             self.refresh(ctx);
         }
         self.refresh(ctx);
+        while self.extracting() {
+            std::thread::sleep(std::time::Duration::from_millis(2));
+            self.refresh(ctx);
+        }
     }
 }

@@ -97,6 +97,7 @@ impl eframe::App for DmpApp {
             .default_size(330.0)
             .min_size(280.0)
             .show(ui, |ui| {
+                ui.set_min_size(ui.available_size());
                 egui::ScrollArea::vertical().show(ui, |ui| self.side_panel(ui, &ctx));
             });
         let names = self.demo_names();
@@ -108,12 +109,13 @@ impl eframe::App for DmpApp {
             .as_ref()
             .map(|m| (0..m.demos().len()).map(|i| m.rollout(i, dm, km)).collect())
             .unwrap_or_default();
-        // Minimum sizes keep the layout from depending on what the first
-        // frames had to show (files load off the frame).
+        // Panels claim their whole size, so the layout does not depend on
+        // what the first frames had to show (files load off the frame).
         egui::Panel::right("plots")
             .default_size(380.0)
             .min_size(340.0)
             .show(ui, |ui| {
+                ui.set_min_size(ui.available_size());
                 if let Some(model) = &model {
                     ui.horizontal(|ui| {
                         egui::ComboBox::from_label("demo")
@@ -148,6 +150,7 @@ impl eframe::App for DmpApp {
             .default_size(200.0)
             .min_size(150.0)
             .show(ui, |ui| {
+                ui.set_min_size(ui.available_size());
                 table::show(ui, &rows, &names);
             });
         egui::CentralPanel::default().show(ui, |ui| {

@@ -4,10 +4,11 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::mpsc::{Receiver, TryRecvError};
 
 use dmpscope_core::io::{LoadOptions, csv::load_csv, load_bytes_with, load_path_with};
 use dmpscope_core::{DemoInfo, RawDemo};
+
+use super::task::Task;
 
 /// A demo in the demos panel.
 #[derive(Clone, Debug)]
@@ -110,64 +111,22 @@ pub fn load_sources(sources: &[Source]) -> LoadResult {
     out
 }
 
-/// Sources being loaded off the frame: on a thread natively; in the
-/// browser (no threads) at the first poll.
-pub struct PendingLoad {
-    /// Native: the loading thread's answer.
-    rx: Option<Receiver<LoadResult>>,
-    /// Web: the sources, loaded when first polled.
-    later: Option<Vec<Source>>,
-}
+/// Sources being loaded off the frame ([`Task`]).
+pub struct PendingLoad(Task<LoadResult>);
 
 impl PendingLoad {
     /// Starts loading `sources`; `wake` is called when done.
     pub fn start(sources: Vec<Source>, wake: impl Fn() + Send + 'static) -> Self {
-        if cfg!(target_arch = "wasm32") {
-            return Self {
-                rx: None,
-                later: Some(sources),
-            };
-        }
-        let (tx, rx) = std::sync::mpsc::channel();
-        let spawned = std::thread::Builder::new()
-            .name("dmpscope load".into())
-            .spawn(move || {
-                let _ = tx.send(load_sources(&sources));
-                wake();
-            });
-        match spawned {
-            Ok(_) => Self {
-                rx: Some(rx),
-                later: None,
-            },
-            Err(e) => {
-                // No thread: the answer is the error, at the next poll.
-                let (tx, rx) = std::sync::mpsc::channel();
-                let _ = tx.send(LoadResult {
-                    demos: Vec::new(),
-                    messages: vec![format!("cannot start loading: {e}")],
-                });
-                Self {
-                    rx: Some(rx),
-                    later: None,
-                }
-            }
-        }
+        Self(Task::start("loading", move || load_sources(&sources), wake))
     }
 
     /// The result once loading is done.
     pub fn poll(&mut self) -> Option<LoadResult> {
-        if let Some(sources) = self.later.take() {
-            return Some(load_sources(&sources));
-        }
-        let rx = self.rx.as_ref()?;
-        match rx.try_recv() {
-            Ok(r) => Some(r),
-            Err(TryRecvError::Empty) => None,
-            Err(TryRecvError::Disconnected) => Some(LoadResult {
+        self.0.poll().map(|r| {
+            r.unwrap_or_else(|message| LoadResult {
                 demos: Vec::new(),
-                messages: vec!["loading stopped unexpectedly".into()],
-            }),
-        }
+                messages: vec![message],
+            })
+        })
     }
 }

@@ -18,6 +18,7 @@ mod plots;
 mod settings;
 mod side;
 mod table;
+mod task;
 mod top_bar;
 mod view3d;
 mod worker;

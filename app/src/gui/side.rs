@@ -102,7 +102,14 @@ impl DmpApp {
                 }
             }
             None => {
-                ui.label("Extracted: waiting for the full landscape");
+                if self.extracting() {
+                    ui.horizontal(|ui| {
+                        ui.spinner();
+                        ui.label("Extracting the optimum…");
+                    });
+                } else {
+                    ui.label("Extracted: waiting for the full landscape");
+                }
             }
         }
         ui.separator();
