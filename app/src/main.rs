@@ -2,13 +2,19 @@
 //! the command line (subcommands). Results go to stdout (or `--out`),
 //! diagnostics and progress to stderr, as the `mcap` CLI does.
 
+#[cfg(not(target_arch = "wasm32"))]
 mod cli;
 
-use std::process::ExitCode;
+/// In the browser wasm-bindgen calls `main` when the module loads.
+#[cfg(target_arch = "wasm32")]
+fn main() {
+    dmpscope::web::start();
+}
 
-use clap::Parser;
-
-fn main() -> ExitCode {
+#[cfg(not(target_arch = "wasm32"))]
+fn main() -> std::process::ExitCode {
+    use clap::Parser as _;
+    use std::process::ExitCode;
     let args = cli::Cli::parse();
     let result = match args.command {
         None => dmpscope::gui::run(args.files),

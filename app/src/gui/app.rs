@@ -13,7 +13,7 @@ use eframe::egui;
 use eframe::egui_wgpu;
 
 use super::file_dialog::Dialogs;
-use super::frame_log::FrameLog;
+use super::frame_log::{FrameLog, FrameWatch};
 use super::heatmap::Cache;
 use super::loading::{DemoEntry, PendingLoad, Source, sample_source};
 use super::settings::Settings;
@@ -64,6 +64,8 @@ pub struct DmpApp {
     pub(super) view3d: View3d,
     /// The time cursor shared by the 3D view and the plots, unit time.
     pub(super) t: f64,
+    /// The longest frame interval while the landscape computes.
+    pub(super) frame_times: FrameWatch,
 }
 
 impl DmpApp {
@@ -103,6 +105,7 @@ impl DmpApp {
             frame_log: FrameLog::from_env(),
             view3d: View3d::new(None),
             t: 0.5,
+            frame_times: FrameWatch::default(),
         };
         app.add_sources(sources, || {});
         app
@@ -113,6 +116,55 @@ impl DmpApp {
     pub fn with_render_state(mut self, render_state: Option<&egui_wgpu::RenderState>) -> Self {
         self.view3d = View3d::new(render_state);
         self
+    }
+
+    /// What the browser tests read (`window.dmpscope_state()`): demos,
+    /// operating point, optimum, landscape progress, a checksum of the
+    /// regenerated paths at the operating point, Table I's rows and the
+    /// longest frame interval while the landscape computed.
+    pub fn test_state(&self) -> serde_json::Value {
+        let (dm, km) = self.settings.op;
+        let (done, total) = self
+            .shown
+            .as_ref()
+            .map_or((0, 0), |s| (s.snapshot.done, s.snapshot.total));
+        let regen_checksum = self.model.as_ref().map(|m| {
+            (0..m.demos().len())
+                .flat_map(|i| m.rollout(i, dm, km).y)
+                .map(|p| p[0] + 2.0 * p[1] + 3.0 * p[2])
+                .sum::<f64>()
+        });
+        let rows: Vec<_> = self
+            .table_rows()
+            .iter()
+            .map(|r| serde_json::json!({"name": r.name, "dm": r.dm, "km": r.km, "j": r.j}))
+            .collect();
+        serde_json::json!({
+            "demos": self.demo_names(),
+            "loading": self.loading(),
+            "op": [dm, km],
+            "optimum": self.extraction.as_ref().map(|x| serde_json::json!({
+                "dm": x.eval.dm, "km": x.eval.km, "j": x.j,
+            })),
+            "landscape": {"done": done, "total": total},
+            "regen_checksum": regen_checksum,
+            "rows": rows,
+            "frames": self.frame_times.frames,
+            "longest_frame_ms_computing": self.frame_times.longest_ms_computing,
+            "longest_slice_ms": self.slice_ms().0,
+            "compute_ms": self.slice_ms().1,
+            "messages": self.messages,
+        })
+    }
+
+    /// The longest slice of landscape work in the browser and all slices,
+    /// ms (0 natively, where a thread computes it).
+    fn slice_ms(&self) -> (f64, f64) {
+        #[cfg(target_arch = "wasm32")]
+        if let Some(w) = &self.worker {
+            return w.slice_ms();
+        }
+        (0.0, 0.0)
     }
 
     /// Whether the landscape is complete.
@@ -202,7 +254,7 @@ impl DmpApp {
             self.rebuild_model();
             self.restart_landscape(ctx);
         }
-        if let Some(worker) = &self.worker
+        if let Some(worker) = &mut self.worker
             && let Some(snapshot) = worker.latest()
             && self
                 .shown

@@ -90,8 +90,20 @@ impl eframe::App for DmpApp {
                 log.reset();
             }
         }
+        self.frame_times.frame(complete);
         self.take_inputs(&ctx);
         self.refresh(&ctx);
+        #[cfg(target_arch = "wasm32")]
+        {
+            let mut state = self.test_state();
+            state["repaint_causes"] = ctx
+                .repaint_causes()
+                .iter()
+                .map(|c| c.to_string())
+                .collect::<Vec<_>>()
+                .into();
+            crate::web::publish_state(state.to_string());
+        }
         egui::Panel::top("top").show(ui, |ui| self.top_bar(ui, &ctx));
         egui::Panel::left("side")
             .default_size(330.0)

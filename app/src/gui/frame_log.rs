@@ -4,7 +4,7 @@
 //! 60 frames.
 
 use std::path::PathBuf;
-use std::time::Instant;
+use web_time::Instant;
 
 /// The log, when asked for.
 pub struct FrameLog {
@@ -70,4 +70,30 @@ fn summary(v: &[f64]) -> String {
         at(0.95),
         at(1.0)
     )
+}
+
+/// Always-on frame accounting for the browser tests: frames drawn and the
+/// longest interval between frames while the landscape was computing.
+#[derive(Default)]
+pub struct FrameWatch {
+    last: Option<Instant>,
+    /// Frames seen.
+    pub frames: u64,
+    /// The longest frame interval while the landscape computed, ms.
+    pub longest_ms_computing: f64,
+}
+
+impl FrameWatch {
+    /// Records a frame; `complete` says whether the landscape is complete.
+    pub fn frame(&mut self, complete: bool) {
+        let now = Instant::now();
+        if let Some(last) = self.last
+            && !complete
+        {
+            let ms = now.duration_since(last).as_secs_f64() * 1e3;
+            self.longest_ms_computing = self.longest_ms_computing.max(ms);
+        }
+        self.last = Some(now);
+        self.frames += 1;
+    }
 }

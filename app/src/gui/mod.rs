@@ -26,12 +26,10 @@ mod worker;
 pub use app::DmpApp;
 pub use settings::Settings;
 
-use std::path::PathBuf;
-
-use eframe::egui;
-
 /// Opens the app window on `files` (the bundled sample when empty).
-pub fn run(files: Vec<PathBuf>) -> anyhow::Result<()> {
+#[cfg(not(target_arch = "wasm32"))]
+pub fn run(files: Vec<std::path::PathBuf>) -> anyhow::Result<()> {
+    use eframe::egui;
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_inner_size([1280.0, 800.0])

@@ -74,7 +74,7 @@ impl DmpApp {
                             .text(format!("landscape {done}/{total}")),
                     );
                     if ui.button("Cancel").clicked()
-                        && let Some(w) = &self.worker
+                        && let Some(w) = &mut self.worker
                     {
                         w.cancel();
                     }

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Builds the browser app into web/dist/ (index.html, dmpscope.js,
+# dmpscope_bg.wasm). Installs what it needs on a fresh Debian machine: the
+# wasm32 target, wasm-bindgen-cli at Cargo.lock's wasm-bindgen version (from
+# crates.io), and clang (zstd's C code for wasm32). No wasm-opt: Debian's
+# binaryen 108 breaks the module at start-up.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/[^0-9.]/, ""); print; exit }' Cargo.lock)
+[ -n "$version" ] || { echo "no wasm-bindgen in Cargo.lock" >&2; exit 1; }
+
+rustup target add wasm32-unknown-unknown >/dev/null
+if ! command -v clang >/dev/null; then
+  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq clang >/dev/null
+fi
+if [ "$(wasm-bindgen --version 2>/dev/null | awk '{print $2}')" != "$version" ]; then
+  echo "installing wasm-bindgen-cli $version (a few minutes)" >&2
+  # Without --locked: the registry here lacks one of its locked dependencies.
+  cargo install wasm-bindgen-cli --version "$version"
+fi
+
+cargo build --release -p dmpscope --bin dmpscope --target wasm32-unknown-unknown
+out=web/dist
+rm -rf "$out"
+mkdir -p "$out"
+wasm-bindgen --target web --no-typescript --out-dir "$out" --out-name dmpscope \
+  target/wasm32-unknown-unknown/release/dmpscope.wasm
+cp web/index.html "$out/"
+ls -l "$out" >&2
+echo "built $out; serve it with: python3 -m http.server -d $out 8080" >&2

@@ -1,0 +1,174 @@
+// dmpscope in headless Chromium (Debian's, WebGL2 on SwiftShader), driven
+// with playwright-core on a page served from 127.0.0.1. Asserts what a user
+// sees: the page loads without console errors, the first frame appears, the
+// sample's demos are listed, a drag on the J map moves the operating point
+// and the regenerated paths and Table I follow, a dropped file is loaded,
+// the screenshot is not blank. Prints the figures of issue 5 and writes them
+// to web/tests/out/figures.json with the screenshot.
+//
+// Usage: web/build.sh && (cd web/tests && npm ci && node browser.mjs)
+import { chromium } from "playwright-core";
+import { createServer } from "node:http";
+import { readFile, mkdtemp, mkdir, writeFile, rm } from "node:fs/promises";
+import { existsSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join, extname, dirname } from "node:path";
+import { fileURLToPath } from "node:url";
+import { gzipSync } from "node:zlib";
+
+const here = dirname(fileURLToPath(import.meta.url));
+const dist = join(here, "..", "dist");
+const out = join(here, "out");
+const chromiumPath = process.env.CHROMIUM ?? "/usr/bin/chromium";
+const TYPES = {
+  ".html": "text/html", ".js": "text/javascript", ".wasm": "application/wasm",
+  ".png": "image/png", ".json": "application/json",
+};
+
+function fail(message) {
+  console.error(`FAIL: ${message}`);
+  process.exitCode = 1;
+  throw new Error(message);
+}
+function check(ok, message) {
+  if (!ok) fail(message);
+  console.log(`ok: ${message}`);
+}
+
+if (!existsSync(join(dist, "dmpscope_bg.wasm"))) fail(`no build in ${dist}: run web/build.sh`);
+if (!existsSync(chromiumPath)) fail(`no Chromium at ${chromiumPath}: apt install chromium`);
+
+const server = createServer(async (req, res) => {
+  const path = join(dist, decodeURIComponent(new URL(req.url, "http://x").pathname).replace(/\/$/, "/index.html"));
+  try {
+    const body = await readFile(path);
+    res.writeHead(200, { "content-type": TYPES[extname(path)] ?? "application/octet-stream" });
+    res.end(body);
+  } catch {
+    res.writeHead(404);
+    res.end();
+  }
+});
+await new Promise((r) => server.listen(0, "127.0.0.1", r));
+const url = `http://127.0.0.1:${server.address().port}/`;
+
+const profile = await mkdtemp(join(tmpdir(), "dmpscope-chromium-"));
+const context = await chromium.launchPersistentContext(profile, {
+  executablePath: chromiumPath,
+  headless: true,
+  viewport: { width: 1280, height: 800 },
+  args: ["--no-sandbox", "--disable-background-networking", "--disable-component-update",
+    "--disable-sync", "--disable-quic", "--no-first-run"],
+});
+const figures = {};
+try {
+  const page = context.pages()[0] ?? (await context.newPage());
+  const errors = [];
+  page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
+  page.on("pageerror", (e) => errors.push(String(e)));
+
+  const state = () => page.evaluate(() => (window.dmpscope_state ? JSON.parse(window.dmpscope_state()) : null));
+  async function until(what, predicate, timeoutMs) {
+    const start = Date.now();
+    for (;;) {
+      const s = await state();
+      if (s && predicate(s)) return s;
+      if (Date.now() - start > timeoutMs) fail(`timed out waiting for ${what}: ${JSON.stringify(s)?.slice(0, 400)}`);
+      await page.waitForTimeout(20);
+    }
+  }
+
+  // Long tasks (> 50 ms on the main thread) are what a user feels as a
+  // frozen page; the observer keeps each one's start and duration.
+  await page.addInitScript(() => {
+    window.__longtasks = [];
+    new PerformanceObserver((list) => {
+      for (const e of list.getEntries()) window.__longtasks.push([e.startTime, e.duration]);
+    }).observe({ type: "longtask", buffered: true });
+  });
+  const t0 = Date.now();
+  await page.goto(url);
+  await until("the first frame", (s) => s.frames >= 1, 20000);
+  figures.first_frame_s = (Date.now() - t0) / 1000;
+  const listed = await until("the sample's demos", (s) => s.demos.length > 0 && !s.loading, 20000);
+  check(listed.demos.length === 10, `the sample's 10 demos are listed (${listed.demos[0]} ...)`);
+  const computing = await until("the landscape to start", (s) => s.landscape.total > 0, 20000);
+  const startedAt = await page.evaluate(() => performance.now());
+  const full = await until("the full landscape", (s) => s.landscape.total > 0 && s.landscape.done === s.landscape.total, 60000);
+  const finishedAt = await page.evaluate(() => performance.now());
+  figures.full_landscape_s = (finishedAt - startedAt) / 1000;
+  figures.full_landscape_from_navigation_s = (Date.now() - t0) / 1000;
+  const tasks = await page.evaluate(([a, b]) => window.__longtasks.filter(([t, d]) => t + d >= a && t <= b), [startedAt, finishedAt]);
+  figures.long_tasks_while_computing = tasks.length;
+  figures.longest_task_ms_while_computing = Math.max(0, ...tasks.map(([, d]) => d));
+  figures.longest_slice_ms = full.longest_slice_ms;
+  figures.landscape_compute_s = full.compute_ms / 1000;
+  figures.frames_while_computing = full.frames - computing.frames;
+  void computing;
+  figures.landscape_points = full.landscape.total;
+  const done = await until("the optimum", (s) => s.optimum !== null, 30000);
+  figures.longest_frame_interval_ms_while_computing = done.longest_frame_ms_computing;
+  console.log(`optimum ${JSON.stringify(done.optimum)}`);
+
+  // A drag on the J map (at 1280x800 it spans about x 382..556, y 55..230).
+  const before = await state();
+  await page.mouse.move(470, 150);
+  await page.mouse.down();
+  for (let i = 1; i <= 10; i++) {
+    await page.mouse.move(470 + 5 * i, 150 - 6 * i);
+    await page.waitForTimeout(30);
+  }
+  await page.mouse.up();
+  await page.waitForTimeout(200);
+  const after = await state();
+  check(JSON.stringify(after.op) !== JSON.stringify(before.op), `the drag moved the operating point ${JSON.stringify(before.op)} -> ${JSON.stringify(after.op)}`);
+  check(after.regen_checksum !== before.regen_checksum, "the regenerated paths followed");
+  const row = (s) => s.rows.find((r) => r.name === "Operating point");
+  check(row(after).dm === after.op[0] && row(after).j !== row(before).j, "Table I's operating-point row followed");
+
+  // A file dropped on the page (the sample again, as a second file).
+  const sample = (await readFile(join(here, "..", "..", "assets", "reach10.mcap"))).toString("base64");
+  await page.evaluate((b64) => {
+    const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+    const dt = new DataTransfer();
+    dt.items.add(new File([bytes], "dropped.mcap"));
+    const target = document.getElementById("dmpscope_canvas");
+    for (const type of ["dragenter", "dragover", "drop"]) {
+      target.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true }));
+    }
+  }, sample);
+  const dropped = await until("the dropped file's demos", (s) => s.demos.length === 20 && !s.loading, 20000);
+  check(dropped.demos.some((d) => d.startsWith("dropped.mcap")), "a dropped file is loaded");
+
+  await mkdir(out, { recursive: true });
+  const shot = await page.screenshot({ path: join(out, "screenshot.png") });
+  const stats = await page.evaluate(async (b64) => {
+    const blob = await (await fetch(`data:image/png;base64,${b64}`)).blob();
+    const bitmap = await createImageBitmap(blob);
+    const c = new OffscreenCanvas(bitmap.width, bitmap.height);
+    const g = c.getContext("2d");
+    g.drawImage(bitmap, 0, 0);
+    const d = g.getImageData(0, 0, c.width, c.height).data;
+    const colours = new Set();
+    let sum = 0, sum2 = 0;
+    for (let i = 0; i < d.length; i += 4 * 7) {
+      const v = d[i] + d[i + 1] + d[i + 2];
+      sum += v; sum2 += v * v;
+      colours.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
+    }
+    const n = d.length / (4 * 7);
+    return { variance: sum2 / n - (sum / n) ** 2, colours: colours.size };
+  }, shot.toString("base64"));
+  check(stats.colours > 200 && stats.variance > 100, `the screenshot is not blank (${stats.colours} colours)`);
+  check(errors.length === 0, `no console errors${errors.length ? ": " + errors.join(" | ") : ""}`);
+
+  const wasm = await readFile(join(dist, "dmpscope_bg.wasm"));
+  figures.wasm_mb = wasm.length / 1e6;
+  figures.wasm_gzip_mb = gzipSync(wasm, { level: 9 }).length / 1e6;
+  await writeFile(join(out, "figures.json"), JSON.stringify(figures, null, 2));
+  console.log(JSON.stringify(figures, null, 2));
+} finally {
+  await context.close();
+  server.close();
+  await rm(profile, { recursive: true, force: true });
+}
