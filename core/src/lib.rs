@@ -28,6 +28,7 @@ pub mod model;
 pub mod nelder_mead;
 pub mod prepare;
 pub mod presets;
+pub mod rl;
 pub mod savgol;
 pub mod segment;
 pub mod similarity;

@@ -10,6 +10,7 @@ mod inputs;
 mod landscape;
 mod output;
 mod regen;
+mod rl;
 mod table;
 
 use clap::{CommandFactory, Parser, Subcommand};
@@ -38,6 +39,8 @@ pub enum Command {
     Extract(extract::Args),
     /// Regenerate every demo at one gain pair.
     Regen(regen::Args),
+    /// Train an RL agent whose action is the DMP forcing term (PPO).
+    Rl(rl::Args),
     /// Measure the landscape and operating-point speed.
     Bench(bench::Args),
     /// Write the bundled synthetic sample recording.
@@ -55,6 +58,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Landscape(a)) => landscape::run(a),
         Some(Command::Extract(a)) => extract::run(a),
         Some(Command::Regen(a)) => regen::run(a),
+        Some(Command::Rl(a)) => rl::run(a),
         Some(Command::Bench(a)) => bench::run(a),
         Some(Command::GenSample(a)) => gen_sample::run(a),
     }

@@ -1,0 +1,87 @@
+//! `dmpscope rl` at the process boundary: the JSON it writes, the same
+//! numbers for the same seed, clear errors for bad arguments.
+
+mod support;
+
+use support::{dmpscope, text};
+
+fn run_json(dir: &std::path::Path, name: &str, seed: &str) -> serde_json::Value {
+    let out = dir.join(name);
+    let o = dmpscope(&[
+        "rl",
+        "assets/reach10.mcap",
+        "--demo",
+        "2",
+        "--preset",
+        "hrstc1",
+        "--steps",
+        "800",
+        "--seed",
+        seed,
+        "--out",
+        out.to_str().expect("utf-8 path"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    assert!(text(&o.stdout).contains("Hrstc1"), "{}", text(&o.stdout));
+    serde_json::from_slice(&std::fs::read(out).expect("json written")).expect("json")
+}
+
+#[test]
+fn rl_writes_its_results_and_repeats_them_for_a_seed() {
+    let dir = std::env::temp_dir().join(format!("dmpscope-cli-rl-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let a = run_json(&dir, "a.json", "5");
+    for key in ["final_error_m", "d_m", "a_peak", "train_seconds"] {
+        assert!(
+            a[key].as_f64().is_some_and(f64::is_finite),
+            "{key}: {}",
+            a[key]
+        );
+    }
+    assert!(a["reached"].is_boolean());
+    let reached = a["final_error_m"].as_f64().is_some_and(|e| e <= 0.005);
+    assert_eq!(a["reached"].as_bool(), Some(reached));
+    let returns = a["returns"].as_array().expect("returns");
+    assert_eq!(
+        returns.len(),
+        2,
+        "800 decisions = 2 iterations of 4 episodes"
+    );
+    let path = a["path"].as_array().expect("path");
+    assert_eq!(path.len(), 1001, "the learned path on the demo's grid");
+    let b = run_json(&dir, "b.json", "5");
+    for key in ["final_error_m", "d_m", "a_peak", "returns", "path"] {
+        assert_eq!(a[key], b[key], "{key} repeats for the same seed");
+    }
+    let c = run_json(&dir, "c.json", "6");
+    assert_ne!(
+        a["returns"], c["returns"],
+        "another seed learns differently"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn rl_rejects_bad_arguments_clearly() {
+    let cases: [(&[&str], &str); 4] = [
+        (
+            &["--demo", "99", "--preset", "Ours"],
+            "--demo must be between 1 and 10",
+        ),
+        (&["--preset", "Nope"], "no preset \"Nope\""),
+        (
+            &["--dm", "0", "--km", "5"],
+            "--dm must be a positive number",
+        ),
+        (&[], "choose the gains"),
+    ];
+    for (args, message) in cases {
+        let mut all = vec!["rl", "assets/reach10.mcap", "--steps", "100"];
+        all.extend_from_slice(args);
+        let o = dmpscope(&all);
+        assert!(!o.status.success(), "{args:?} should fail");
+        let err = text(&o.stderr);
+        assert!(err.contains(message), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
