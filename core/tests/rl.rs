@@ -200,3 +200,24 @@ fn training_is_reproducible_and_learns() {
     assert!(last > first, "the return improves: {first} -> {last}");
     assert_eq!(ga.path.len(), d.len());
 }
+
+#[test]
+fn small_steps_give_the_numbers_of_whole_iterations() {
+    let d = demo();
+    let env = DmpEnv::new(&d, 25.0, 156.25).expect("env");
+    let mut whole = Trainer::new(env.clone(), PpoConfig::default(), 4);
+    let mut sliced = Trainer::new(env, PpoConfig::default(), 4);
+    let mut steps = 0;
+    for _ in 0..3 {
+        let a = whole.iterate();
+        let b = loop {
+            steps += 1;
+            if let Some(s) = sliced.step() {
+                break s;
+            }
+        };
+        assert_eq!(a, b);
+    }
+    assert!(steps > 3 * 4, "an iteration is many steps ({steps})");
+    assert_eq!(whole.greedy(), sliced.greedy());
+}

@@ -172,8 +172,69 @@ pub struct Trainer {
     critic_opt: Adam,
     rng: Rng,
     decisions: usize,
+    pending: Option<Pending>,
     /// Mean return of every iteration so far (the learning curve).
     pub returns: Vec<f64>,
+}
+
+/// An iteration under way.
+#[derive(Default)]
+struct Pending {
+    batch: Batch,
+    episodes: usize,
+    sum_ret: f64,
+    sum_err: f64,
+    order: Vec<usize>,
+    update: usize,
+}
+
+/// Runs one exploring episode into `batch` (GAE advantages, not yet
+/// normalised); returns its return and final distance to the goal.
+fn collect_episode(
+    env: &mut DmpEnv,
+    actor: &Mlp,
+    critic: &Mlp,
+    log_std: &[f64; ACT],
+    rng: &mut Rng,
+    c: PpoConfig,
+    batch: &mut Batch,
+) -> (f64, f64) {
+    let mut obs = env.reset();
+    let (mut rewards, mut values, mut ret) = (Vec::new(), Vec::new(), 0.0);
+    loop {
+        let (mu, _) = actor.forward(&obs);
+        let act: [f64; ACT] = std::array::from_fn(|j| mu[j] + log_std[j].exp() * rng.normal());
+        batch.obs.push(obs);
+        batch.act.push(act);
+        batch.logp.push(log_prob(&act, &mu, log_std));
+        values.push(critic.forward(&obs).0[0]);
+        let step = env.step(&act, None, None);
+        rewards.push(step.reward);
+        ret += step.reward;
+        obs = env.observe();
+        if step.done {
+            break;
+        }
+    }
+    // GAE over the episode (the last decision is terminal).
+    let mut adv = vec![0.0; rewards.len()];
+    let mut next = (0.0, 0.0); // (advantage, value) after t
+    for t in (0..rewards.len()).rev() {
+        let delta = rewards[t] + c.gamma * next.1 - values[t];
+        adv[t] = delta + c.gamma * c.lambda * next.0;
+        next = (adv[t], values[t]);
+    }
+    batch.ret.extend(adv.iter().zip(&values).map(|(a, v)| a + v));
+    batch.adv.extend(adv);
+    (ret, env.goal_error())
+}
+
+/// Advantages to zero mean and unit deviation.
+fn normalise(adv: &mut [f64]) {
+    let n = adv.len().max(1) as f64;
+    let mean = adv.iter().sum::<f64>() / n;
+    let sd = (adv.iter().map(|a| (a - mean).powi(2)).sum::<f64>() / n).sqrt();
+    adv.iter_mut().for_each(|a| *a = (*a - mean) / (sd + 1e-8));
 }
 
 impl Trainer {
@@ -193,6 +254,7 @@ impl Trainer {
             log_std: [config.init_log_std; ACT],
             rng,
             decisions: 0,
+            pending: None,
             returns: Vec::new(),
         }
     }
@@ -207,82 +269,80 @@ impl Trainer {
         &self.env
     }
 
-    /// Collects `config.episodes` episodes, then updates actor and critic.
+    /// Collects `config.episodes` episodes, then updates actor and critic
+    /// (all the [`Self::step`]s of one iteration).
     pub fn iterate(&mut self) -> IterStats {
-        let c = self.config;
-        let mut batch = Batch::default();
-        let (mut sum_ret, mut sum_err) = (0.0, 0.0);
-        for _ in 0..c.episodes {
-            let mut obs = self.env.reset();
-            let (mut rewards, mut values, mut ret) = (Vec::new(), Vec::new(), 0.0);
-            loop {
-                let (mu, _) = self.actor.forward(&obs);
-                let act: [f64; ACT] =
-                    std::array::from_fn(|j| mu[j] + self.log_std[j].exp() * self.rng.normal());
-                batch.obs.push(obs);
-                batch.act.push(act);
-                batch.logp.push(log_prob(&act, &mu, &self.log_std));
-                values.push(self.critic.forward(&obs).0[0]);
-                let step = self.env.step(&act, None, None);
-                rewards.push(step.reward);
-                ret += step.reward;
-                self.decisions += 1;
-                obs = self.env.observe();
-                if step.done {
-                    break;
-                }
+        loop {
+            if let Some(stats) = self.step() {
+                return stats;
             }
-            sum_ret += ret;
-            sum_err += self.env.goal_error();
-            // GAE over the episode (the last decision is terminal).
-            let mut adv = vec![0.0; rewards.len()];
-            let mut next = (0.0, 0.0); // (advantage, value) after t
-            for t in (0..rewards.len()).rev() {
-                let delta = rewards[t] + c.gamma * next.1 - values[t];
-                adv[t] = delta + c.gamma * c.lambda * next.0;
-                next = (adv[t], values[t]);
-            }
-            batch
-                .ret
-                .extend(adv.iter().zip(&values).map(|(a, v)| a + v));
-            batch.adv.extend(adv);
         }
-        let n = batch.adv.len() as f64;
-        let mean = batch.adv.iter().sum::<f64>() / n;
-        let sd = (batch.adv.iter().map(|a| (a - mean).powi(2)).sum::<f64>() / n).sqrt();
-        batch
-            .adv
-            .iter_mut()
-            .for_each(|a| *a = (*a - mean) / (sd + 1e-8));
+    }
 
-        let mut order: Vec<usize> = (0..batch.adv.len()).collect();
-        for _ in 0..c.epochs {
-            for i in (1..order.len()).rev() {
-                let j = (self.rng.next_u64() % (i as u64 + 1)) as usize;
-                order.swap(i, j);
+    /// A small piece of an iteration (one episode, or one minibatch update
+    /// of both networks: a few milliseconds), so a browser can train between
+    /// frames; returns the iteration's summary when it completes. A run of
+    /// `step`s gives exactly the numbers of the same run of `iterate`s.
+    pub fn step(&mut self) -> Option<IterStats> {
+        let c = self.config;
+        let pending = self.pending.get_or_insert_with(Pending::default);
+        if pending.episodes < c.episodes {
+            let (ret, err) = collect_episode(
+                &mut self.env,
+                &self.actor,
+                &self.critic,
+                &self.log_std,
+                &mut self.rng,
+                c,
+                &mut pending.batch,
+            );
+            pending.episodes += 1;
+            pending.sum_ret += ret;
+            pending.sum_err += err;
+            self.decisions += super::env::DECISIONS;
+            if pending.episodes == c.episodes {
+                normalise(&mut pending.batch.adv);
+                pending.order = (0..pending.batch.adv.len()).collect();
             }
-            for idx in order.chunks(c.minibatch.max(1)) {
-                let (_, g) = actor_loss_grad(&self.actor, &self.log_std, &batch, idx, c.clip);
-                let mut params = std::mem::take(&mut self.actor.params);
-                params.extend_from_slice(&self.log_std);
-                self.actor_opt.step(&mut params, &g);
-                let split = params.len() - ACT;
-                for (j, v) in params[split..].iter().enumerate() {
-                    self.log_std[j] = v.clamp(-5.0, 1.0);
+            return None;
+        }
+        let mb = c.minibatch.max(1);
+        let per_epoch = pending.order.len().div_ceil(mb);
+        if pending.update < c.epochs * per_epoch {
+            let chunk = pending.update % per_epoch;
+            if chunk == 0 {
+                for i in (1..pending.order.len()).rev() {
+                    let j = (self.rng.next_u64() % (i as u64 + 1)) as usize;
+                    pending.order.swap(i, j);
                 }
-                params.truncate(split);
-                self.actor.params = params;
-                let (_, g) = critic_loss_grad(&self.critic, &batch, idx);
-                self.critic_opt.step(&mut self.critic.params, &g);
+            }
+            let end = ((chunk + 1) * mb).min(pending.order.len());
+            let idx = &pending.order[chunk * mb..end];
+            let (_, g) = actor_loss_grad(&self.actor, &self.log_std, &pending.batch, idx, c.clip);
+            let mut params = std::mem::take(&mut self.actor.params);
+            params.extend_from_slice(&self.log_std);
+            self.actor_opt.step(&mut params, &g);
+            let split = params.len() - ACT;
+            for (j, v) in params[split..].iter().enumerate() {
+                self.log_std[j] = v.clamp(-5.0, 1.0);
+            }
+            params.truncate(split);
+            self.actor.params = params;
+            let (_, g) = critic_loss_grad(&self.critic, &pending.batch, idx);
+            self.critic_opt.step(&mut self.critic.params, &g);
+            pending.update += 1;
+            if pending.update < c.epochs * per_epoch {
+                return None;
             }
         }
         let stats = IterStats {
-            mean_return: sum_ret / c.episodes as f64,
-            mean_final_error: sum_err / c.episodes as f64,
+            mean_return: pending.sum_ret / c.episodes as f64,
+            mean_final_error: pending.sum_err / c.episodes as f64,
             decisions: self.decisions,
         };
+        self.pending = None;
         self.returns.push(stats.mean_return);
-        stats
+        Some(stats)
     }
 
     /// Runs the policy's mean once (no exploration).
