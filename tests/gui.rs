@@ -133,3 +133,31 @@ fn a_bad_file_is_reported_in_the_window_and_nothing_loaded_is_lost() {
     let _message = h.get_by_label_contains("broken.mcap");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn the_rl_panel_trains_in_the_background_and_shows_the_learned_path() {
+    let mut h = harness();
+    h.state_mut().rl_choices.steps = 800;
+    h.get_by_label("RL with DMP").click();
+    h.run_steps(2);
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "Train")
+        .click();
+    h.run_steps(1);
+    for _ in 0..2000 {
+        if h.state().rl_progress().is_some_and(|p| p.done) {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.run_steps(1);
+    }
+    let p = h.state().rl_progress().expect("a run started");
+    assert!(p.done, "training finished");
+    assert_eq!(p.decisions, (800, 800));
+    assert_eq!(p.returns.len(), 2, "two iterations of 4 episodes");
+    let greedy = p.greedy.expect("a learned path");
+    assert_eq!(greedy.path.len(), 1001);
+    assert!(greedy.final_error.is_finite() && p.d.is_finite());
+    h.run_steps(2);
+    // The result line names the goal error.
+    let _line = h.get_by_label_contains("goal error");
+}

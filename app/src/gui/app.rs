@@ -16,6 +16,8 @@ use super::file_dialog::Dialogs;
 use super::frame_log::{FrameLog, FrameWatch};
 use super::heatmap::Cache;
 use super::loading::{DemoEntry, PendingLoad, Source, sample_source};
+use super::rl_panel::RlChoices;
+use super::rl_run::RlRun;
 use super::settings::Settings;
 use super::task::Task;
 use super::view3d::View3d;
@@ -66,6 +68,10 @@ pub struct DmpApp {
     pub(super) t: f64,
     /// The longest frame interval while the landscape computes.
     pub(super) frame_times: FrameWatch,
+    /// The RL panel's choices.
+    pub rl_choices: RlChoices,
+    /// The RL training run, if one was started.
+    pub(super) rl: Option<RlRun>,
 }
 
 impl DmpApp {
@@ -106,6 +112,8 @@ impl DmpApp {
             view3d: View3d::new(None),
             t: 0.5,
             frame_times: FrameWatch::default(),
+            rl_choices: RlChoices::default(),
+            rl: None,
         };
         app.add_sources(sources, || {});
         app
@@ -165,6 +173,11 @@ impl DmpApp {
             return w.slice_ms();
         }
         (0.0, 0.0)
+    }
+
+    /// The RL training's progress, if a run was started.
+    pub fn rl_progress(&self) -> Option<super::rl_run::Progress> {
+        self.rl.as_ref().map(RlRun::progress)
     }
 
     /// Whether the landscape is complete.
@@ -321,6 +334,7 @@ impl DmpApp {
 
     fn rebuild_model(&mut self) {
         self.model = None;
+        self.rl = None;
         self.view3d.reset();
         self.shown = None;
         self.extraction = None;

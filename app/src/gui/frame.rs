@@ -170,7 +170,10 @@ impl eframe::App for DmpApp {
             self.maps(ui, height);
             if let Some(model) = &model {
                 self.view3d.toggles(ui, model.demos().len());
-                self.view3d.show(ui, model, &regen, self.selected, self.t);
+                let learned = self.rl_path();
+                let learned = learned.as_ref().map(|(i, p)| (*i, p.as_slice()));
+                self.view3d
+                    .show(ui, model, &regen, self.selected, self.t, learned);
             }
         });
     }

@@ -15,6 +15,8 @@ mod frame_log;
 mod heatmap;
 mod loading;
 mod plots;
+mod rl_panel;
+mod rl_run;
 mod settings;
 mod side;
 mod table;
@@ -24,6 +26,8 @@ mod view3d;
 mod worker;
 
 pub use app::DmpApp;
+pub use rl_panel::RlChoices;
+pub use rl_run::Progress as RlProgress;
 pub use settings::Settings;
 
 /// Opens the app window on `files` (the bundled sample when empty).

@@ -113,6 +113,8 @@ impl DmpApp {
             }
         }
         ui.separator();
+        ui.collapsing("RL with DMP", |ui| self.rl_panel(ui, ctx));
+        ui.separator();
         ui.collapsing("Settings", |ui| self.settings_ui(ui, ctx));
     }
 

@@ -132,7 +132,7 @@ pub struct Worker {
 
 /// Lets the browser run its event loop (a zero-delay timeout).
 #[cfg(target_arch = "wasm32")]
-async fn yield_to_browser() {
+pub(super) async fn yield_to_browser() {
     let promise = js_sys::Promise::new(&mut |resolve, _| {
         if let Some(w) = web_sys::window() {
             let _ = w.set_timeout_with_callback_and_timeout_and_arguments_0(&resolve, 0);

@@ -224,7 +224,9 @@ fn collect_episode(
         adv[t] = delta + c.gamma * c.lambda * next.0;
         next = (adv[t], values[t]);
     }
-    batch.ret.extend(adv.iter().zip(&values).map(|(a, v)| a + v));
+    batch
+        .ret
+        .extend(adv.iter().zip(&values).map(|(a, v)| a + v));
     batch.adv.extend(adv);
     (ret, env.goal_error())
 }

@@ -90,7 +90,7 @@ impl View3d {
 
     /// Draws the view in the space left in `ui`, for `model` with the demos'
     /// regenerations `regen` (same order), `selected` demo and time cursor
-    /// `t` (unit time).
+    /// `t` (unit time) and a `learned` RL path (demo index, positions).
     pub fn show(
         &mut self,
         ui: &mut egui::Ui,
@@ -98,6 +98,7 @@ impl View3d {
         regen: &[Rollout],
         selected: usize,
         t: f64,
+        learned: Option<(usize, &[[f64; 3]])>,
     ) {
         let size = ui.available_size().max(egui::vec2(120.0, 120.0));
         let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
@@ -156,6 +157,7 @@ impl View3d {
             t,
             colours: &colours,
             pixels_per_point: ppp,
+            learned,
         };
         let segments = Arc::new(scene::build(&frame, &input));
         let aspect = rect.width() / rect.height().max(1.0);
@@ -201,7 +203,11 @@ impl View3d {
         hint(
             rect.left_top() + egui::vec2(6.0, 6.0),
             Align2::LEFT_TOP,
-            format!("solid: demo · dashed: DMP · grid {:.0} mm", step * 1000.0),
+            format!(
+                "solid: demo · dashed: DMP · gold: RL{} · grid {:.0} mm",
+                if learned.is_some() { "" } else { " (none yet)" },
+                step * 1000.0
+            ),
         );
         hint(
             rect.left_bottom() + egui::vec2(6.0, -6.0),

@@ -47,6 +47,9 @@ pub struct SceneInput<'a> {
     pub colours: &'a [[u8; 3]],
     /// Pixels per point (widths scale with it).
     pub pixels_per_point: f32,
+    /// A path an RL agent learned: (demo index, positions in demo
+    /// coordinates), drawn gold on top.
+    pub learned: Option<(usize, &'a [[f64; 3]])>,
 }
 
 /// The scene's frame: the origin subtracted from world points and the box
@@ -270,6 +273,12 @@ pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
     for (i, path) in regen_paths.iter().enumerate().filter(|(i, _)| shown(*i)) {
         let c = lighter(colour_of(i), 0.45);
         out.path(path, rgba(c, 0.95), width_of(i), dash);
+    }
+    if let Some((i, path)) = input.learned
+        && let Some(d) = input.demos.get(i)
+    {
+        let points: Vec<Vec3> = path.iter().map(|p| frame.local(add(d.p0, *p))).collect();
+        out.path(&points, [1.0, 0.84, 0.3, 1.0], 3.0 * ppp, 0.0);
     }
     let dark = [0.08, 0.08, 0.1, 1.0];
     for (i, d) in input.demos.iter().enumerate().filter(|(i, _)| shown(*i)) {
