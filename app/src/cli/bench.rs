@@ -98,5 +98,48 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         om / 0.5
     );
     println!("operating point: full paths (median):  {rm:8.3} ms");
+    rl_figures(&model)?;
+    Ok(())
+}
+
+/// RL figures: one minibatch step of the critic (100 samples, 7-64-64-1,
+/// forward + backward + Adam, as `/tmp` probes of burn measured it) and one
+/// PPO iteration (4 episodes + 8 epochs of updates).
+fn rl_figures(model: &dmpscope_core::Model) -> anyhow::Result<()> {
+    use dmpscope_core::rl::mlp::{Adam, Mlp};
+    use dmpscope_core::rl::ppo::{Batch, critic_loss_grad};
+    use dmpscope_core::rl::{DmpEnv, PpoConfig, Trainer};
+    let mut rng = dmpscope_core::synth::Rng::new(1);
+    let mut critic = Mlp::new(&[7, 64, 64, 1], &mut rng, 1.0);
+    let mut adam = Adam::new(critic.params.len(), 1e-3);
+    let mut batch = Batch::default();
+    for _ in 0..100 {
+        batch.obs.push(std::array::from_fn(|_| rng.normal()));
+        batch.ret.push(rng.normal());
+    }
+    let idx: Vec<usize> = (0..100).collect();
+    let mut step_ms = Vec::new();
+    for _ in 0..500 {
+        let t = Instant::now();
+        let (_, g) = critic_loss_grad(&critic, &batch, &idx);
+        adam.step(&mut critic.params, &g);
+        step_ms.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    let env = DmpEnv::new(&model.demos()[0], 32.6, 1000.0)?;
+    let mut trainer = Trainer::new(env, PpoConfig::default(), 1);
+    let mut iter_ms = Vec::new();
+    for _ in 0..15 {
+        let t = Instant::now();
+        std::hint::black_box(trainer.iterate());
+        iter_ms.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    println!(
+        "RL: critic minibatch step (median):     {:8.3} ms   (100 x 7-64-64-1, forward + backward + Adam)",
+        median(&step_ms)
+    );
+    println!(
+        "RL: PPO iteration (median):             {:8.2} ms   (400 decisions, 8 epochs)",
+        median(&iter_ms)
+    );
     Ok(())
 }
