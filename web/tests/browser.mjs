@@ -15,6 +15,7 @@ import { tmpdir } from "node:os";
 import { join, extname, dirname } from "node:path";
 import { fileURLToPath } from "node:url";
 import { gzipSync } from "node:zlib";
+import { execFileSync } from "node:child_process";
 
 const here = dirname(fileURLToPath(import.meta.url));
 const dist = join(here, "..", "dist");
@@ -109,6 +110,17 @@ try {
   const done = await until("the optimum", (s) => s.optimum !== null, 30000);
   figures.longest_frame_interval_ms_while_computing = done.longest_frame_ms_computing;
   console.log(`optimum ${JSON.stringify(done.optimum)}`);
+  // The same numbers as the native build (DMPSCOPE_BIN, else target/{debug,release}).
+  const repo = join(here, "..", "..");
+  const bin = process.env.DMPSCOPE_BIN ??
+    [join(repo, "target", "debug", "dmpscope"), join(repo, "target", "release", "dmpscope")].find(existsSync);
+  if (!bin) fail("no native dmpscope binary to compare with (cargo build first)");
+  const native = JSON.parse(execFileSync(bin, ["extract", join(repo, "assets", "reach10.mcap"), "--json"],
+    { stdio: ["ignore", "pipe", "ignore"] }).toString()).extraction;
+  const rel = (a, b) => Math.abs(a - b) / Math.max(Math.abs(b), 1e-300);
+  const worst = Math.max(rel(done.optimum.dm, native.eval.dm), rel(done.optimum.km, native.eval.km), rel(done.optimum.j, native.j));
+  figures.optimum_vs_native_rel = worst;
+  check(worst <= 1e-12, `the browser's optimum equals the native one (relative difference ${worst.toExponential(2)})`);
 
   // A drag on the J map (at 1280x800 it spans about x 382..556, y 55..230).
   const before = await state();
