@@ -65,7 +65,7 @@ const figures = {};
 try {
   const page = context.pages()[0] ?? (await context.newPage());
   const errors = [];
-  page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
+  page.on("console", (m) => { if (process.env.VERBOSE) console.log(`console.${m.type()}: ${m.text()}`); if (m.type() === "error") errors.push(m.text()); });
   page.on("pageerror", (e) => errors.push(String(e)));
 
   const state = () => page.evaluate(() => (window.dmpscope_state ? JSON.parse(window.dmpscope_state()) : null));
@@ -151,6 +151,23 @@ try {
   }, sample);
   const dropped = await until("the dropped file's demos", (s) => s.demos.length === 20 && !s.loading, 20000);
   check(dropped.demos.some((d) => d.startsWith("dropped.mcap")), "a dropped file is loaded");
+
+  // Open… (the top bar's second button): with the click's user activation
+  // rfd opens the browser's file chooser at once; the picked file's bytes
+  // are loaded.
+  const chooser = page.waitForEvent("filechooser", { timeout: 10000 });
+  await page.mouse.move(105, 12);
+  await page.waitForTimeout(300);
+  await page.mouse.down();
+  await page.waitForTimeout(300);
+  await page.mouse.up();
+  await (await chooser).setFiles({
+    name: "picked.mcap",
+    mimeType: "application/octet-stream",
+    buffer: await readFile(join(here, "..", "..", "assets", "reach10.mcap")),
+  });
+  const picked = await until("the picked file's demos", (s) => s.demos.length === 30 && !s.loading, 20000);
+  check(picked.demos.some((d) => d.startsWith("picked.mcap")), "a file picked with Open… is loaded");
 
   await mkdir(out, { recursive: true });
   const shot = await page.screenshot({ path: join(out, "screenshot.png") });
