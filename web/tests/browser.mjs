@@ -91,7 +91,7 @@ try {
   await page.goto(url);
   await until("the first frame", (s) => s.frames >= 1, 20000);
   figures.first_frame_s = (Date.now() - t0) / 1000;
-  const listed = await until("the sample's demos", (s) => s.demos.length > 0 && !s.loading, 20000);
+  const listed = await until("the sample's demos", (s) => s.demos?.length > 0 && !s.loading, 20000);
   check(listed.demos.length === 10, `the sample's 10 demos are listed (${listed.demos[0]} ...)`);
   const computing = await until("the landscape to start", (s) => s.landscape.total > 0, 20000);
   const startedAt = await page.evaluate(() => performance.now());
@@ -190,6 +190,14 @@ try {
   }, shot.toString("base64"));
   check(stats.colours > 200 && stats.variance > 100, `the screenshot is not blank (${stats.colours} colours)`);
   check(errors.length === 0, `no console errors${errors.length ? ": " + errors.join(" | ") : ""}`);
+
+  // Settings persist in the browser's storage: a preset chosen, the page
+  // reloaded, the operating point is still there.
+  await page.mouse.click(270, 363); // "Hrstc4" in the side panel
+  await until("the Hrstc4 button's effect", (s) => s.op[0] === 4 && s.op[1] === 4, 10000);
+  await page.reload();
+  const reloaded = await until("the reloaded app", (s) => s.demos?.length === 10 && !s.loading, 20000);
+  check(reloaded.op[0] === 4 && reloaded.op[1] === 4, `settings survive a reload (operating point ${JSON.stringify(reloaded.op)})`);
 
   const wasm = await readFile(join(dist, "dmpscope_bg.wasm"));
   figures.wasm_mb = wasm.length / 1e6;
