@@ -87,6 +87,20 @@ try {
       for (const e of list.getEntries()) window.__longtasks.push([e.startTime, e.duration]);
     }).observe({ type: "longtask", buffered: true });
   });
+  // A click egui sees for sure: the pointer first hovers for two frames,
+  // then press and release arrive together, so they land in one frame
+  // (egui measures a click's duration in frame time, and a frame under
+  // SwiftShader can take longer than egui's 0.8 s click limit on a busy
+  // machine).
+  async function click(x, y) {
+    const before = (await state()).frames;
+    await page.mouse.move(x, y);
+    await until("a frame", (s) => s.frames >= before + 2, 10000);
+    await Promise.all([page.mouse.down(), page.mouse.up()]);
+    const pressed = (await state()).frames;
+    await until("a frame", (s) => s.frames >= pressed + 2, 10000);
+  }
+
   const t0 = Date.now();
   await page.goto(url);
   await until("the first frame", (s) => s.frames >= 1, 20000);
@@ -155,17 +169,28 @@ try {
   // Open… (the top bar's second button): with the click's user activation
   // rfd opens the browser's file chooser at once; the picked file's bytes
   // are loaded.
-  const chooser = page.waitForEvent("filechooser", { timeout: 10000 });
-  await page.mouse.move(105, 12);
-  await page.waitForTimeout(300);
-  await page.mouse.down();
-  await page.waitForTimeout(300);
-  await page.mouse.up();
-  await (await chooser).setFiles({
+  // rfd clicks its hidden file input when the click's user activation is
+  // still active (a file chooser), else it shows its own dialog (the input
+  // and an Ok button): either way the picked file's bytes are loaded.
+  const file = {
     name: "picked.mcap",
     mimeType: "application/octet-stream",
     buffer: await readFile(join(here, "..", "..", "assets", "reach10.mcap")),
-  });
+  };
+  await until("the landscape of the 20 demos", (s) => s.landscape.total > 0 && s.landscape.done === s.landscape.total && s.optimum !== null, 60000);
+  const chooser = page.waitForEvent("filechooser", { timeout: 15000 }).then((c) => ["chooser", c]);
+  const overlay = page.waitForSelector("#rfd-input", { state: "attached", timeout: 15000 }).then(() => ["overlay"]);
+  await click(105, 12);
+  const [how, fc] = await Promise.race([chooser, overlay]);
+  if (how === "chooser") {
+    await fc.setFiles(file);
+  } else {
+    await page.setInputFiles("#rfd-input", file);
+    await page.click("button.rfd-button >> text=Ok");
+  }
+  console.log(`Open… answered with ${how === "chooser" ? "the browser's file chooser" : "rfd's dialog"}`);
+  chooser.catch(() => {});
+  overlay.catch(() => {});
   const picked = await until("the picked file's demos", (s) => s.demos.length === 30 && !s.loading, 20000);
   check(picked.demos.some((d) => d.startsWith("picked.mcap")), "a file picked with Open… is loaded");
 
@@ -193,7 +218,7 @@ try {
 
   // Settings persist in the browser's storage: a preset chosen, the page
   // reloaded, the operating point is still there.
-  await page.mouse.click(270, 363); // "Hrstc4" in the side panel
+  await click(270, 363); // "Hrstc4" in the side panel
   await until("the Hrstc4 button's effect", (s) => s.op[0] === 4 && s.op[1] === 4, 10000);
   await page.reload();
   const reloaded = await until("the reloaded app", (s) => s.demos?.length === 10 && !s.loading, 20000);
