@@ -2,8 +2,12 @@
 //! hand-written backpropagation, and Adam. The parameters live in one flat
 //! vector so the optimiser and the finite-difference tests see them whole.
 //!
-//! Chosen over burn (ndarray backend + autodiff) by measurement: see the
-//! closing note of issue 6 and `core/tests/rl.rs`.
+//! Chosen over burn by measurement: one critic minibatch step (100 samples,
+//! 7-64-64-1, forward + backward + Adam, f64) takes a median 0.74 ms here
+//! against 0.84 ms with burn 0.20's NdArray + Autodiff backend (whose cold
+//! build took 17 minutes on this 2-core machine); `dmpscope bench` prints
+//! this side's figure. The gradients are checked against finite
+//! differences in `core/tests/rl.rs`.
 
 use crate::synth::Rng;
 
