@@ -69,7 +69,7 @@ fn landscape_json_has_exactly_the_documented_shape() {
     assert_eq!(
         sorted,
         [
-            "d_sum", "demos", "dm", "j", "k", "km", "optimum", "presets", "s"
+            "d_sum", "demos", "dm", "j", "k", "km", "optimum", "s", "table"
         ]
     );
     let n = 12;
@@ -100,22 +100,66 @@ fn landscape_json_has_exactly_the_documented_shape() {
         .map(String::as_str)
         .collect();
     opt_keys.sort_unstable();
-    assert_eq!(opt_keys, ["d_sum", "dm", "j", "km", "on_edge", "s", "zeta"]);
+    assert_eq!(
+        opt_keys,
+        [
+            "converged",
+            "d_sum",
+            "dm",
+            "edge",
+            "grid_min_j",
+            "iterations",
+            "j",
+            "km",
+            "on_edge",
+            "s",
+            "zeta"
+        ]
+    );
     assert!(opt["j"].as_f64().expect("j") <= grid_min);
-    let names: Vec<&str> = doc["presets"]
+    let names: Vec<&str> = doc["table"]
         .as_array()
-        .expect("presets")
+        .expect("table")
         .iter()
         .map(|p| p["name"].as_str().expect("name"))
         .collect();
-    assert_eq!(names, ["Ours", "Hrstc1", "Hrstc2", "Hrstc3", "Hrstc4"]);
-    for p in doc["presets"].as_array().expect("presets") {
+    assert_eq!(
+        names,
+        ["Extracted", "Ours", "Hrstc1", "Hrstc2", "Hrstc3", "Hrstc4"]
+    );
+    for p in doc["table"].as_array().expect("table") {
         assert_eq!(p["d_mean"].as_array().expect("d_mean").len(), 10);
         assert_eq!(p["a_peak"].as_array().expect("a_peak").len(), 10);
     }
     let demos = doc["demos"].as_array().expect("demos");
     assert_eq!(demos.len(), 10);
     assert_eq!(demos[0]["name"], "reach10.mcap:/demo_01");
+    assert_eq!(demos[0]["n_samples"].as_u64().map(|n| n > 50), Some(true));
+}
+
+#[test]
+fn extract_json_is_the_same_report_as_landscape_json() {
+    let doc = landscape_json(&[]);
+    let out = dmpscope(&[
+        "extract",
+        sample().to_str().expect("path"),
+        "--grid",
+        "12",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let report: Value = serde_json::from_slice(&out.stdout).expect("json");
+    let mut keys: Vec<&str> = report
+        .as_object()
+        .expect("object")
+        .keys()
+        .map(String::as_str)
+        .collect();
+    keys.sort_unstable();
+    assert_eq!(keys, ["demos", "k", "optimum", "table"]);
+    for key in keys {
+        assert_eq!(report[key], doc[key], "{key}");
+    }
 }
 
 #[test]

@@ -1,48 +1,64 @@
 //! The app driven as a user would (egui_kittest, no renderer): the sample
 //! loads, the landscape fills, a preset button moves the operating point, a
-//! drag on the J map moves it again, and changing k changes J and the
-//! optimum without recomputing the landscape.
+//! drag on the J map moves it again, changing k changes J and the optimum
+//! without recomputing the landscape, a rosbag2 folder opens, a folder with
+//! nothing usable says so. Jobs run inline (`Runner::inline`), so every
+//! frame finishes the work it starts and no test sleeps; one test runs the
+//! real background threads.
 
-use dmpscope::gui::{DmpApp, Settings};
+mod support;
+
+use dmpscope::gui::{Command, DmpApp};
+use dmpscope::session::{self, Runner, Settings, Source, Status};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
-fn harness() -> Harness<'static, DmpApp> {
-    let settings = Settings {
-        grid_n: 16,
-        ..Settings::default()
-    };
-    let sample = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/reach10.mcap");
+fn harness_on(sources: Vec<Source>, runner: Runner) -> Harness<'static, DmpApp> {
+    let settings = Settings::with_grid_points(16);
     let mut h = Harness::builder()
         .with_size([1280.0, 800.0])
-        .build_eframe(move |_cc| DmpApp::with_settings(settings, vec![sample]));
-    h.run_steps(2);
-    let ctx = h.ctx.clone();
-    h.state_mut().wait_for_landscape(&ctx);
+        .build_eframe(move |_cc| DmpApp::with_runner(settings, sources, runner));
     h.run_steps(2);
     h
 }
 
+fn harness() -> Harness<'static, DmpApp> {
+    harness_on(vec![Source::Path(support::sample_path())], Runner::inline())
+}
+
 fn operating_point_row(h: &Harness<'_, DmpApp>) -> dmpscope_core::TableRow {
     h.state()
+        .session()
         .table_rows()
         .into_iter()
         .find(|r| r.name == "Operating point")
         .expect("an operating-point row")
 }
 
+fn add(h: &mut Harness<'_, DmpApp>, sources: Vec<Source>) {
+    let ctx = h.ctx.clone();
+    h.state_mut().apply(
+        Command::Session(session::Command::AddSources(sources)),
+        &ctx,
+    );
+    h.run_steps(2);
+}
+
 #[test]
 fn the_sample_loads_and_the_optimum_is_extracted() {
     let h = harness();
-    let app = h.state();
-    assert_eq!(app.demo_names().len(), 10);
-    assert!(app.landscape_complete());
-    let x = app
-        .extraction
-        .as_ref()
+    let session = h.state().session();
+    assert_eq!(session.model().map(|m| m.demos().len()), Some(10));
+    assert!(session.landscape_complete());
+    let x = session
+        .extraction()
         .expect("extracted once the landscape is complete");
     assert!(x.converged);
-    let names: Vec<String> = app.table_rows().iter().map(|r| r.name.clone()).collect();
+    let names: Vec<String> = session
+        .table_rows()
+        .iter()
+        .map(|r| r.name.clone())
+        .collect();
     assert_eq!(
         names,
         [
@@ -92,20 +108,16 @@ fn a_preset_button_then_a_drag_move_the_operating_point() {
 #[test]
 fn changing_k_recombines_j_and_moves_the_optimum() {
     let mut h = harness();
-    let j20 = h.state().extraction.as_ref().expect("optimum").j;
+    let j20 = h.state().session().extraction().expect("optimum").j;
+    let landscapes = h.state().session().runs().landscapes;
     h.state_mut().settings.k = 200.0;
-    h.run_steps(1);
-    let ctx = h.ctx.clone();
-    h.state_mut().wait_for_landscape(&ctx);
-    h.run_steps(1);
-    let x = h
-        .state()
-        .extraction
-        .as_ref()
-        .expect("re-extracted for the new k");
+    h.run_steps(2);
+    let session = h.state().session();
+    let x = session.extraction().expect("re-extracted for the new k");
     assert_eq!(x.k, 200.0);
     assert!(x.j > j20, "J grows with k: {} vs {j20}", x.j);
-    let rows = h.state().table_rows();
+    assert_eq!(session.runs().landscapes, landscapes, "no new landscape");
+    let rows = session.table_rows();
     let ours = rows.iter().find(|r| r.name == "Ours").expect("Ours");
     assert_eq!(ours.j, ours.s + 200.0 * ours.d_sum);
 }
@@ -113,51 +125,123 @@ fn changing_k_recombines_j_and_moves_the_optimum() {
 #[test]
 fn a_bad_file_is_reported_in_the_window_and_nothing_loaded_is_lost() {
     let mut h = harness();
-    let dir = std::env::temp_dir().join(format!("dmpscope-gui-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let bad = dir.join("broken.mcap");
+    let bad = support::tmp_path("broken.mcap");
     std::fs::write(&bad, b"\x89MCAP0\r\nthis is not a recording").expect("write");
-    let ctx = h.ctx.clone();
-    h.state_mut().add_files(vec![bad], &ctx);
-    for _ in 0..500 {
-        if !h.state().loading() {
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(5));
-        h.run_steps(1);
-    }
-    h.run_steps(2);
-    assert!(!h.state().loading());
-    assert_eq!(h.state().demo_names().len(), 10, "the sample's demos stay");
+    add(&mut h, vec![Source::Path(bad)]);
+    let session = h.state().session();
+    assert!(!session.loading());
+    assert_eq!(
+        session.model().map(|m| m.demos().len()),
+        Some(10),
+        "the sample's demos stay"
+    );
     // The message names the file (get_by_* panics when nothing matches).
     let _message = h.get_by_label_contains("broken.mcap");
-    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
-fn the_rl_panel_trains_in_the_background_and_shows_the_learned_path() {
+fn a_rosbag2_folder_opens_as_in_the_cli() {
+    let bag = support::rosbag2_folder("gui-bag", &[0..2, 2..4], false);
+    let mut h = harness_on(vec![Source::Path(bag.clone())], Runner::inline());
+    h.run_steps(1);
+    let session = h.state().session();
+    let names: Vec<&str> = session
+        .model()
+        .expect("a model of the bag's demos")
+        .demos()
+        .iter()
+        .map(|d| d.name.as_str())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "gui-bag_0.mcap:/hand_01",
+            "gui-bag_0.mcap:/hand_02",
+            "gui-bag_1.mcap:/hand_03",
+            "gui-bag_1.mcap:/hand_04"
+        ]
+    );
+    assert_eq!(session.status(), Status::Ready);
+    let _listed = h.get_by_label_contains("gui-bag_1.mcap:/hand_04");
+    // Its metadata.yaml opens the same folder (what a file dialog picks).
+    add(&mut h, vec![Source::Path(bag.join("metadata.yaml"))]);
+    assert_eq!(h.state().session().demos().len(), 8);
+}
+
+#[test]
+fn a_folder_with_no_usable_demo_says_so_instead_of_a_spinner() {
+    let short = support::rosbag2_folder("gui-short", &[0..0], true);
+    let mut h = harness_on(vec![Source::Path(short)], Runner::inline());
+    h.run_steps(1);
+    assert!(matches!(
+        h.state().session().status(),
+        Status::NoUsableDemo(_)
+    ));
+    let _said = h.get_by_label_contains("No demonstration can be used");
+    assert!(
+        h.query_by_label_contains("Computing the landscape")
+            .is_none()
+    );
+
+    let empty = support::tmp_path("gui-empty");
+    std::fs::create_dir_all(&empty).expect("folder");
+    let mut h = harness_on(vec![Source::Path(empty)], Runner::inline());
+    h.run_steps(1);
+    assert_eq!(h.state().session().status(), Status::NoDemos);
+    let _said = h.get_by_label_contains("No demonstration was found");
+    let _why = h.get_by_label_contains("holds no .mcap file");
+}
+
+#[test]
+fn the_rl_panel_trains_and_shows_the_learned_path() {
     let mut h = harness();
-    h.state_mut().rl_choices.steps = 800;
+    h.state_mut().view.rl.steps = 800;
     h.get_by_label("RL with DMP").click();
     h.run_steps(2);
     h.get_by_role_and_label(egui::accesskit::Role::Button, "Train")
         .click();
-    h.run_steps(1);
-    for _ in 0..2000 {
-        if h.state().rl_progress().is_some_and(|p| p.done) {
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(5));
-        h.run_steps(1);
-    }
-    let p = h.state().rl_progress().expect("a run started");
+    h.run_steps(3);
+    let (_, p) = h.state().session().rl().expect("a run started");
     assert!(p.done, "training finished");
     assert_eq!(p.decisions, (800, 800));
     assert_eq!(p.returns.len(), 2, "two iterations of 4 episodes");
-    let greedy = p.greedy.expect("a learned path");
+    let greedy = p.greedy.as_ref().expect("a learned path");
     assert_eq!(greedy.path.len(), 1001);
     assert!(greedy.final_error.is_finite() && p.d.is_finite());
-    h.run_steps(2);
     // The result line names the goal error.
     let _line = h.get_by_label_contains("goal error");
+}
+
+#[test]
+fn background_threads_load_compute_and_extract() {
+    let ctx_runner = |ctx: &egui::Context| {
+        let ctx = ctx.clone();
+        Runner::background(move || ctx.request_repaint())
+    };
+    let settings = Settings::with_grid_points(16);
+    let sample = support::sample_path();
+    let mut h = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .build_eframe(move |cc| {
+            DmpApp::with_runner(
+                settings,
+                vec![Source::Path(sample)],
+                ctx_runner(&cc.egui_ctx),
+            )
+        });
+    for _ in 0..2000 {
+        h.run_steps(1);
+        let s = h.state().session();
+        if s.extraction().is_some() && !s.busy() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let session = h.state().session();
+    assert!(
+        session.extraction().is_some(),
+        "status {:?}",
+        session.status()
+    );
+    assert_eq!(session.model().map(|m| m.demos().len()), Some(10));
 }

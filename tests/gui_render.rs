@@ -1,12 +1,16 @@
 //! The whole window rendered with wgpu on Mesa's lavapipe (Vulkan on the
 //! CPU), compared with baselines in `tests/snapshots/` (update them with
-//! `UPDATE_SNAPSHOTS=1 cargo test --test gui_render`). These tests fail, not
-//! skip, without lavapipe: CI installs `mesa-vulkan-drivers`. One backend
-//! is pinned because thin lines rasterise differently on GL and Vulkan.
+//! `UPDATE_SNAPSHOTS=1 cargo test --test gui_render`). One backend is pinned
+//! because thin lines rasterise differently on GL and Vulkan.
+//!
+//! Without lavapipe these tests fail under CI (`CI` set: CI installs
+//! `mesa-vulkan-drivers`), and elsewhere print one notice and pass, so the
+//! README's test command passes on a machine with only the Rust toolchain.
 
-use std::sync::Arc;
+use std::sync::{Arc, Once};
 
-use dmpscope::gui::{DmpApp, Settings};
+use dmpscope::gui::DmpApp;
+use dmpscope::session::{Runner, Settings};
 use eframe::egui_wgpu::{WgpuSetup, WgpuSetupCreateNew};
 use eframe::wgpu;
 use egui_kittest::kittest::Queryable;
@@ -31,23 +35,41 @@ fn lavapipe() -> WgpuSetup {
     WgpuSetup::CreateNew(setup)
 }
 
+/// Whether Mesa's lavapipe is there. Without it: a panic under CI, else
+/// one notice for the whole run and `false` (the test returns, passing).
+fn have_lavapipe() -> bool {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+    desc.backends = wgpu::Backends::VULKAN;
+    let instance = wgpu::Instance::new(desc);
+    let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::VULKAN));
+    let found = adapters.iter().any(|a| {
+        let info = a.get_info();
+        info.device_type == wgpu::DeviceType::Cpu && info.name.contains("llvmpipe")
+    });
+    let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false" && v != "0");
+    if !found && ci {
+        panic!("no Mesa lavapipe Vulkan adapter under CI: install mesa-vulkan-drivers");
+    }
+    if !found {
+        static NOTICE: Once = Once::new();
+        NOTICE.call_once(|| {
+            eprintln!("skipped: install mesa-vulkan-drivers to run the rendered-window tests");
+        });
+    }
+    found
+}
+
 fn harness() -> Harness<'static, DmpApp> {
-    let settings = Settings {
-        grid_n: 32,
-        ..Settings::default()
-    };
+    let settings = Settings::with_grid_points(32);
     let mut h = Harness::builder()
         .with_size([1280.0, 800.0])
         .wgpu_setup(lavapipe())
         .with_options(SnapshotOptions::new().output_path("../tests/snapshots"))
         .build_eframe(move |cc| {
-            DmpApp::with_settings(settings, Vec::new())
+            DmpApp::with_runner(settings, Vec::new(), Runner::inline())
                 .with_render_state(cc.wgpu_render_state.as_ref())
         });
-    h.run_steps(2);
-    let ctx = h.ctx.clone();
-    h.state_mut().wait_for_landscape(&ctx);
-    h.run_steps(3);
+    h.run_steps(5);
     h
 }
 
@@ -69,6 +91,9 @@ fn coloured_pixels(image: &image::RgbaImage, rect: egui::Rect) -> usize {
 
 #[test]
 fn the_window_matches_its_baseline() {
+    if !have_lavapipe() {
+        return;
+    }
     let mut h = harness();
     h.snapshot("window_sample");
     h.get_by_role_and_label(egui::accesskit::Role::Button, "Hrstc4")
@@ -79,6 +104,9 @@ fn the_window_matches_its_baseline() {
 
 #[test]
 fn the_3d_view_draws_the_demos_and_hides_them_on_request() {
+    if !have_lavapipe() {
+        return;
+    }
     let mut h = harness();
     // The view is below its row of toggles ("show" 1 ... 10 "regenerated").
     let row = h.get_by_label("show").rect();

@@ -4,8 +4,19 @@
 # wasm32 target, wasm-bindgen-cli at Cargo.lock's wasm-bindgen version (from
 # crates.io), and clang (zstd's C code for wasm32). No wasm-opt: Debian's
 # binaryen 108 breaks the module at start-up.
+#
+# `web/build.sh --testing` builds with the `testing` feature: the browser
+# tests' hook `window.dmpscope_state()`. The plain build has no test code.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+features=()
+for arg in "$@"; do
+  case "$arg" in
+    --testing) features=(--features testing) ;;
+    *) echo "usage: web/build.sh [--testing]" >&2; exit 2 ;;
+  esac
+done
 
 version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/[^0-9.]/, ""); print; exit }' Cargo.lock)
 [ -n "$version" ] || { echo "no wasm-bindgen in Cargo.lock" >&2; exit 1; }
@@ -20,7 +31,7 @@ if [ "$(wasm-bindgen --version 2>/dev/null | awk '{print $2}')" != "$version" ];
   cargo install wasm-bindgen-cli --version "$version"
 fi
 
-cargo build --release -p dmpscope --bin dmpscope --target wasm32-unknown-unknown
+cargo build --release -p dmpscope --bin dmpscope --target wasm32-unknown-unknown "${features[@]}"
 out=web/dist
 rm -rf "$out"
 mkdir -p "$out"

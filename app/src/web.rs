@@ -1,36 +1,44 @@
 //! The browser entry: starts the same [`DmpApp`] as the desktop on the
 //! page's canvas with eframe's web runner (wgpu: WebGPU where the browser
-//! has it, WebGL2 otherwise), and publishes a read-only test hook,
+//! has it, WebGL2 otherwise). With the `testing` feature (the browser
+//! tests' build) it also publishes a read-only hook,
 //! `window.dmpscope_state()`, returning the app's state as JSON.
 
-use std::cell::RefCell;
-
 use eframe::wasm_bindgen::JsCast as _;
-use eframe::wasm_bindgen::prelude::Closure;
 use eframe::web_sys;
 
 use crate::gui::DmpApp;
 
+#[cfg(feature = "testing")]
 thread_local! {
     /// The JSON the test hook returns, written by the app every frame.
-    static STATE: RefCell<String> = RefCell::new("{}".to_owned());
+    static STATE: std::cell::RefCell<String> = std::cell::RefCell::new("{}".to_owned());
 }
 
 /// Replaces what `window.dmpscope_state()` returns.
+#[cfg(feature = "testing")]
 pub fn publish_state(json: String) {
     STATE.with(|s| *s.borrow_mut() = json);
 }
 
-/// Starts the app on the canvas `dmpscope_canvas` and installs the hook.
+#[cfg(feature = "testing")]
+fn install_hook() {
+    use eframe::wasm_bindgen::prelude::Closure;
+    let hook = Closure::<dyn Fn() -> String>::new(|| STATE.with(|s| s.borrow().clone()));
+    if let Some(window) = web_sys::window() {
+        let _ = js_sys::Reflect::set(&window, &"dmpscope_state".into(), &hook.into_js_value());
+    }
+}
+
+/// Starts the app on the canvas `dmpscope_canvas` (and, for the browser
+/// tests, installs the hook).
 pub fn start() {
     eframe::WebLogger::init(log::LevelFilter::Warn).ok();
     let Some(document) = web_sys::window().and_then(|w| w.document()) else {
         return;
     };
-    let hook = Closure::<dyn Fn() -> String>::new(|| STATE.with(|s| s.borrow().clone()));
-    if let Some(window) = web_sys::window() {
-        let _ = js_sys::Reflect::set(&window, &"dmpscope_state".into(), &hook.into_js_value());
-    }
+    #[cfg(feature = "testing")]
+    install_hook();
     let Some(canvas) = document
         .get_element_by_id("dmpscope_canvas")
         .and_then(|e| e.dyn_into::<web_sys::HtmlCanvasElement>().ok())

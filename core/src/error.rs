@@ -114,12 +114,35 @@ pub enum Error {
         /// Topics that were seen and skipped, with their schema names.
         skipped: Vec<(String, String)>,
     },
+    /// A source cannot be read as a recording (a folder without MCAP files,
+    /// bytes that are not text where text was expected).
+    #[error("{path}: {reason}")]
+    Source {
+        /// The file or folder.
+        path: String,
+        /// Why not.
+        reason: String,
+    },
+    /// No demonstration is usable: each reason names a demo and what is
+    /// wrong with it (empty when there was none at all).
+    #[error("no usable demonstration{}", reasons_list(.reasons))]
+    NoUsableDemo {
+        /// One line per demo that was left out.
+        reasons: Vec<String>,
+    },
     /// A setting is out of its range.
     #[error("invalid setting: {0}")]
     InvalidSetting(String),
     /// The work was cancelled by the caller.
     #[error("cancelled")]
     Cancelled,
+}
+
+fn reasons_list(reasons: &[String]) -> String {
+    if reasons.is_empty() {
+        return " (no demonstration was found in the inputs)".to_owned();
+    }
+    format!(": {}", reasons.join("; "))
 }
 
 fn skipped_list(skipped: &[(String, String)]) -> String {

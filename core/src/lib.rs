@@ -5,13 +5,19 @@
 //! human-likeness error `d`, the cross-demo similarity `S` and the objective
 //! `J = S + k * sum(d)` over a grid of gain ratios (D/M, K/M).
 //!
-//! The method, every number of it, is fixed in `shared/method.md`; each module
+//! The method, every number of it, is fixed in `docs/method.md`; each module
 //! names the section it implements. Data flows one way:
 //!
 //! ```text
-//! bytes -> RawDemo (io) -> PreparedDemo (prepare) -> Model (dmp, similarity)
-//!       -> Landscape (landscape) -> Extraction, Table I (extract, presets)
+//! file, folder or bytes -> RawDemo (io::load_source, group)
+//!       -> PreparedDemo (prepare) -> Model (pipeline, dmp, similarity)
+//!       -> Landscape (landscape) -> Extraction (extract)
+//!       -> Report: Table I (report, presets)
 //! ```
+//!
+//! Both front ends (the CLI and the app's session) load with
+//! [`io::load_source`] and build the model with [`build_model`], and tell
+//! the user what happened with [`Notice`]s.
 //!
 //! Nothing here needs threads, a GPU or a file system: the loaders take any
 //! [`std::io::Read`], the landscape engine runs in slices when asked to, and
@@ -26,8 +32,11 @@ pub mod io;
 pub mod landscape;
 pub mod model;
 pub mod nelder_mead;
+pub mod notice;
+pub mod pipeline;
 pub mod prepare;
 pub mod presets;
+pub mod report;
 pub mod rl;
 pub mod savgol;
 pub mod segment;
@@ -39,8 +48,11 @@ pub use error::{Error, Result};
 pub use extract::{Extraction, extract};
 pub use landscape::{Axis, AxisScale, Grid, Landscape, LandscapeJob};
 pub use model::{Model, PointEval, Rollout};
+pub use notice::{Level, Notice};
+pub use pipeline::{Built, Unusable, build_model};
 pub use prepare::{PrepSettings, PreparedDemo, prepare};
-pub use presets::{PAPER_PRESETS, Preset, TableRow};
+pub use presets::{PAPER_PRESETS, Preset};
+pub use report::{Report, TableRow};
 
 /// The number of points on the unit-time integration grid (method.md section 2.6).
 pub const DEFAULT_GRID_POINTS: usize = 1001;

@@ -40,6 +40,8 @@ impl Default for PrepSettings {
 pub struct PreparedDemo {
     /// The demo's name, `file:topic`.
     pub name: String,
+    /// Samples as recorded (before sorting and de-duplication).
+    pub n_samples: usize,
     /// Duration `T` in seconds (the paper's M).
     pub duration_s: f64,
     /// The median sample interval `h`, seconds.
@@ -192,6 +194,7 @@ pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
     let goal = y_raw[y_raw.len() - 1];
     Ok(PreparedDemo {
         name: raw.name.clone(),
+        n_samples: raw.stamps_ns.len(),
         duration_s: total,
         median_interval_s: h,
         n0,

@@ -1,9 +1,10 @@
-//! The paper's reference gains (method.md section 7) and Table I rows
-//! (per demo `d_mean` and `a_peak`, and `zeta`) for any gain points.
+//! The paper's reference gains (method.md section 7) and the Table I rows of
+//! any gain points ([`crate::report::TableRow`]).
 
 use serde::Serialize;
 
-use crate::model::{Model, PointEval};
+use crate::model::Model;
+use crate::report::TableRow;
 
 /// A named gain pair.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -51,46 +52,6 @@ pub fn preset(name: &str) -> Option<Preset> {
         .iter()
         .find(|p| p.name.eq_ignore_ascii_case(name))
         .copied()
-}
-
-/// One row of Table I.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct TableRow {
-    /// What the gains are (a preset's name, `Extracted`, `Operating point`).
-    pub name: String,
-    /// D/M.
-    pub dm: f64,
-    /// K/M.
-    pub km: f64,
-    /// Damping ratio.
-    pub zeta: f64,
-    /// Human-likeness error per demo, metres over 1 s.
-    pub d_mean: Vec<f64>,
-    /// Peak acceleration per demo.
-    pub a_peak: Vec<f64>,
-    /// `sum d`.
-    pub d_sum: f64,
-    /// `S`.
-    pub s: f64,
-    /// `J` for the table's `k`.
-    pub j: f64,
-}
-
-impl TableRow {
-    /// A row from an evaluation.
-    pub fn from_eval(name: impl Into<String>, eval: &PointEval, k: f64) -> Self {
-        Self {
-            name: name.into(),
-            dm: eval.dm,
-            km: eval.km,
-            zeta: eval.zeta,
-            d_mean: eval.d.clone(),
-            a_peak: eval.a_peak.clone(),
-            d_sum: eval.d_sum,
-            s: eval.s,
-            j: eval.j(k),
-        }
-    }
 }
 
 /// Table I for named gain points.

@@ -104,6 +104,7 @@ fn dmp_demo(g: [f64; 3], v0: [f64; 3]) -> (PreparedDemo, [f64; 3]) {
     let (duration_s, median_interval_s, n0, p0) = (1.0, 1e-3, 1001, [0.0; 3]);
     let demo = PreparedDemo {
         name,
+        n_samples: 1001,
         duration_s,
         median_interval_s,
         n0,

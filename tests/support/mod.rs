@@ -34,3 +34,55 @@ pub fn tmp_path(name: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir.join(name)
 }
+
+/// Writes a rosbag2 folder `name` (a `metadata.yaml` and one MCAP file per
+/// entry of `splits`, each holding the synthetic reaches `range` of the
+/// sample generator on topics `/hand_NN`) and returns its path. `short`
+/// adds, to the first file, a topic of 5 samples no demo can be made of.
+pub fn rosbag2_folder(name: &str, splits: &[std::ops::Range<usize>], short: bool) -> PathBuf {
+    use dmpscope_core::io::write::{TopicSamples, write_pose_stamped};
+    let dir = tmp_path(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("bag folder");
+    let demos = dmpscope_core::synth::reach_demos(
+        7,
+        splits.iter().map(|r| r.end).max().unwrap_or(0),
+        1_700_000_000_000_000_000,
+    );
+    let mut files = Vec::new();
+    for (f, range) in splits.iter().enumerate() {
+        let topics: Vec<String> = range
+            .clone()
+            .map(|i| format!("/hand_{:02}", i + 1))
+            .collect();
+        let stub: Vec<(i64, [f64; 3])> = (0..5)
+            .map(|k| (k * 10_000_000, [0.0, 0.0, k as f64 * 0.01]))
+            .collect();
+        let mut samples: Vec<TopicSamples<'_>> = range
+            .clone()
+            .zip(&topics)
+            .map(|(i, topic)| TopicSamples {
+                topic,
+                frame_id: "world",
+                samples: &demos[i].samples,
+            })
+            .collect();
+        if short && f == 0 {
+            samples.push(TopicSamples {
+                topic: "/aborted",
+                frame_id: "world",
+                samples: &stub,
+            });
+        }
+        let file = format!("{name}_{f}.mcap");
+        let out = std::fs::File::create(dir.join(&file)).expect("bag file");
+        write_pose_stamped(std::io::BufWriter::new(out), &samples, true).expect("write bag");
+        files.push(file);
+    }
+    let list: String = files.iter().map(|f| format!("  - {f}\n")).collect();
+    let metadata = format!(
+        "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: mcap\n  relative_file_paths:\n{list}"
+    );
+    std::fs::write(dir.join("metadata.yaml"), metadata).expect("metadata");
+    dir
+}

@@ -6,7 +6,7 @@
 // the screenshot is not blank. Prints the figures of issue 5 and writes them
 // to web/tests/out/figures.json with the screenshot.
 //
-// Usage: web/build.sh && (cd web/tests && npm ci && node browser.mjs)
+// Usage: web/build.sh --testing && (cd web/tests && npm ci && node browser.mjs)
 import { chromium } from "playwright-core";
 import { createServer } from "node:http";
 import { readFile, mkdtemp, mkdir, writeFile, rm } from "node:fs/promises";
@@ -36,7 +36,7 @@ function check(ok, message) {
   console.log(`ok: ${message}`);
 }
 
-if (!existsSync(join(dist, "dmpscope_bg.wasm"))) fail(`no build in ${dist}: run web/build.sh`);
+if (!existsSync(join(dist, "dmpscope_bg.wasm"))) fail(`no build in ${dist}: run web/build.sh --testing`);
 if (!existsSync(chromiumPath)) fail(`no Chromium at ${chromiumPath}: apt install chromium`);
 
 const server = createServer(async (req, res) => {
@@ -130,9 +130,9 @@ try {
     [join(repo, "target", "debug", "dmpscope"), join(repo, "target", "release", "dmpscope")].find(existsSync);
   if (!bin) fail("no native dmpscope binary to compare with (cargo build first)");
   const native = JSON.parse(execFileSync(bin, ["extract", join(repo, "assets", "reach10.mcap"), "--json"],
-    { stdio: ["ignore", "pipe", "ignore"] }).toString()).extraction;
+    { stdio: ["ignore", "pipe", "ignore"] }).toString()).optimum;
   const rel = (a, b) => Math.abs(a - b) / Math.max(Math.abs(b), 1e-300);
-  const worst = Math.max(rel(done.optimum.dm, native.eval.dm), rel(done.optimum.km, native.eval.km), rel(done.optimum.j, native.j));
+  const worst = Math.max(rel(done.optimum.dm, native.dm), rel(done.optimum.km, native.km), rel(done.optimum.j, native.j));
   figures.optimum_vs_native_rel = worst;
   check(worst <= 1e-12, `the browser's optimum equals the native one (relative difference ${worst.toExponential(2)})`);
 

@@ -4,14 +4,13 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::landscape::{Axis, Grid};
-use dmpscope_core::{PrepSettings, landscape};
-
 use dmpscope_core::demo::median;
-use dmpscope_core::io::load_path;
+use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::io::{LoadOptions, SourceData, load_source};
+use dmpscope_core::landscape::{Axis, Grid};
+use dmpscope_core::{PrepSettings, Unusable, landscape};
 
-use super::inputs::{expand, model_of};
+use super::inputs::model_of;
 
 /// Arguments of `bench`.
 #[derive(Debug, clap::Args)]
@@ -20,7 +19,7 @@ pub struct Args {
     #[arg(value_name = "FILES", default_value = "assets/reach10.mcap")]
     files: Vec<PathBuf>,
     /// Points per axis of the landscape.
-    #[arg(long, default_value_t = 128)]
+    #[arg(long, default_value_t = Axis::paper().n)]
     grid: usize,
     /// Landscape repetitions.
     #[arg(long, default_value_t = 7)]
@@ -42,10 +41,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let t0 = Instant::now();
     let mut raw = Vec::new();
-    for path in expand(&args.files)? {
-        raw.extend(load_path(&path)?.demos);
+    for path in &args.files {
+        let name = path.display().to_string();
+        raw.extend(load_source(&name, SourceData::Path(path), &LoadOptions::default())?.demos);
     }
-    let (_, model) = model_of(raw, &PrepSettings::default(), DmpSettings::default())?;
+    let (_, model) = model_of(
+        raw,
+        &PrepSettings::default(),
+        DmpSettings::default(),
+        Unusable::Fail,
+    )?;
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let axis = Axis {
         n: args.grid,

@@ -1,9 +1,7 @@
 //! `dmpscope extract`: the gains minimising J, and Table I comparing them
 //! with the paper's gains.
 
-use dmpscope_core::TableRow;
-use dmpscope_core::presets::preset_rows;
-use serde_json::json;
+use dmpscope_core::Report;
 
 use super::inputs::InputArgs;
 use super::landscape::{GridArgs, landscape_and_optimum};
@@ -15,7 +13,8 @@ pub struct Args {
     input: InputArgs,
     #[command(flatten)]
     grid: GridArgs,
-    /// Print JSON (the extraction and Table I rows) instead of text.
+    /// Print the report as JSON (the shape documented in
+    /// `dmpscope_core::report`: k, demos, optimum, table) instead of text.
     #[arg(long)]
     json: bool,
 }
@@ -23,31 +22,13 @@ pub struct Args {
 /// Prints `(M:D:K)`, zeta, J, the edge flag and Table I.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (_, model, _, optimum) = landscape_and_optimum(&args.input, &args.grid)?;
-    let k = args.grid.k;
-    let mut rows = vec![TableRow::from_eval("Extracted", &optimum.eval, k)];
-    rows.extend(preset_rows(&model, k));
+    let report = Report::new(&model, Some(&optimum), args.grid.k);
     if args.json {
-        let doc = json!({ "extraction": optimum, "table": rows });
-        println!("{}", serde_json::to_string_pretty(&doc)?);
+        println!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(());
     }
-    let e = &optimum.eval;
-    println!("(M:D:K) = 1 : {:.4} : {:.4}", e.dm, e.km);
-    println!("zeta    = {:.4}", e.zeta);
-    println!(
-        "J       = {:.6}  (S = {:.6}, sum d = {:.6} m, k = {k})",
-        optimum.j, e.s, e.d_sum
-    );
-    if optimum.on_edge() {
-        println!(
-            "on edge = yes: {} (widen the range)",
-            optimum.edges.describe()
-        );
-    } else {
-        println!("on edge = no");
-    }
+    print!("{}", report.optimum_text());
     println!();
-    let names: Vec<String> = model.demos().iter().map(|d| d.name.clone()).collect();
-    print!("{}", super::table::render(&rows, &names));
+    print!("{}", report.table_text());
     Ok(())
 }

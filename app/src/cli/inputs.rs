@@ -1,17 +1,19 @@
-//! From command-line paths to a fitted model: folders expanded to their
-//! `*.mcap` files, demos pooled in command-line order then topic name,
-//! grouped (per topic, per file, segmented), and the preprocessing and DMP
-//! settings shared by every subcommand.
+//! From command-line paths to a fitted model, through the same core calls
+//! the app makes: [`dmpscope_core::io::load_source`] for each FILE (a file or
+//! a folder) with the loading flags as [`LoadOptions`], demos pooled in
+//! command-line order, then [`dmpscope_core::build_model`] with the
+//! `--unusable` policy. Every default is the core's.
 
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use anyhow::{Context, bail};
 use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::group::{Grouping, group};
-use dmpscope_core::io::{LoadOptions, UpAxis, csv::load_csv, load_path_with};
+use dmpscope_core::group::Grouping;
+use dmpscope_core::io::{LoadOptions, SourceData, UpAxis, load_source, load_streams};
 use dmpscope_core::segment::SegmentSettings;
-use dmpscope_core::{Model, PrepSettings, RawDemo, prepare};
+use dmpscope_core::{Model, PrepSettings, RawDemo, Unusable, build_model};
+
+use super::output::print_notices;
 
 /// What a demonstration is, on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -24,11 +26,20 @@ pub enum DemosBy {
     Segment,
 }
 
+/// What to do with a demo that cannot be used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum UnusableArg {
+    /// Stop with its error.
+    Fail,
+    /// Leave it out with a warning; stop only when none is left.
+    Skip,
+}
+
 /// Files and how to read them.
 #[derive(Debug, clap::Args)]
 pub struct LoadArgs {
-    /// MCAP or CSV (`t,x,y,z`) files, or folders (every `*.mcap` in them,
-    /// sorted by name).
+    /// MCAP or CSV (`t,x,y,z`) files, or folders (a rosbag2 folder, or any
+    /// folder: every `*.mcap` in it, sorted by name).
     #[arg(required = true, value_name = "FILES")]
     pub files: Vec<PathBuf>,
     /// Keep only these TF child frames / pose indices (repeatable).
@@ -62,49 +73,48 @@ impl LoadArgs {
         }
     }
 
-    /// The streams of every file, before grouping.
-    pub fn load_streams(&self) -> anyhow::Result<Vec<RawDemo>> {
-        let options = LoadOptions {
+    /// The loading options these flags describe.
+    pub fn options(&self) -> LoadOptions {
+        LoadOptions {
             frames: self.frames.clone(),
             up: if self.y_up { UpAxis::YUp } else { UpAxis::ZUp },
-        };
-        let mut demos = Vec::new();
-        for path in expand(&self.files)? {
-            if path
-                .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("csv"))
-            {
-                let text = std::fs::read_to_string(&path)
-                    .with_context(|| format!("{}: cannot read", path.display()))?;
-                let mut demo = load_csv(&path.display().to_string(), &text)?;
-                for p in &mut demo.positions {
-                    *p = options.up.to_z_up(*p);
-                }
-                demos.push(demo);
-                continue;
-            }
-            let loaded = load_path_with(&path, &options)?;
-            for (topic, schema) in &loaded.skipped {
-                eprintln!("note: {}: skipped topic {topic} ({schema})", path.display());
-            }
-            for warning in &loaded.warnings {
-                eprintln!("warning: {warning}");
-            }
-            demos.extend(loaded.demos);
+            demos: match self.demos {
+                DemosBy::Topic => Grouping::PerTopic,
+                DemosBy::File => Grouping::PerFile,
+                DemosBy::Segment => Grouping::Segmented(self.segment_settings()),
+            },
         }
-        Ok(demos)
+    }
+
+    /// The streams of every file, before grouping (`info --segment`).
+    pub fn load_streams(&self) -> anyhow::Result<Vec<RawDemo>> {
+        self.load_with(load_streams)
     }
 
     /// The demonstrations, grouped as asked.
     pub fn load_demos(&self) -> anyhow::Result<Vec<RawDemo>> {
-        let grouping = match self.demos {
-            DemosBy::Topic => Grouping::PerTopic,
-            DemosBy::File => Grouping::PerFile,
-            DemosBy::Segment => Grouping::Segmented(self.segment_settings()),
-        };
-        let demos = group(self.load_streams()?, &grouping)?;
+        let demos = self.load_with(load_source)?;
         if demos.is_empty() {
-            bail!("no demonstration found (segmentation found no movement between rests?)");
+            anyhow::bail!("no demonstration found (segmentation found no movement between rests?)");
+        }
+        Ok(demos)
+    }
+
+    fn load_with(
+        &self,
+        load: fn(
+            &str,
+            SourceData<'_>,
+            &LoadOptions,
+        ) -> dmpscope_core::Result<dmpscope_core::io::SourceDemos>,
+    ) -> anyhow::Result<Vec<RawDemo>> {
+        let options = self.options();
+        let mut demos = Vec::new();
+        for path in &self.files {
+            let name = path.display().to_string();
+            let loaded = load(&name, SourceData::Path(path), &options)?;
+            print_notices(&loaded.notices);
+            demos.extend(loaded.demos);
         }
         Ok(demos)
     }
@@ -116,18 +126,23 @@ pub struct InputArgs {
     #[command(flatten)]
     pub load: LoadArgs,
     /// Savitzky-Golay window (samples, odd).
-    #[arg(long, default_value_t = 21)]
+    #[arg(long, default_value_t = PrepSettings::default().sg_window)]
     pub sg_window: usize,
     /// Savitzky-Golay polynomial order.
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = PrepSettings::default().sg_order)]
     pub sg_order: usize,
     /// Number of DMP basis functions.
-    #[arg(long, default_value_t = 100)]
+    #[arg(long, default_value_t = DmpSettings::default().basis_functions)]
     pub basis: usize,
+    /// A demo that cannot be used (too few samples, non-finite values):
+    /// stop, or leave it out with a warning.
+    #[arg(long, value_enum, default_value_t = UnusableArg::Fail)]
+    pub unusable: UnusableArg,
 }
 
 impl InputArgs {
-    fn prep(&self) -> PrepSettings {
+    /// The preprocessing settings.
+    pub fn prep(&self) -> PrepSettings {
         PrepSettings {
             sg_window: self.sg_window,
             sg_order: self.sg_order,
@@ -135,61 +150,45 @@ impl InputArgs {
         }
     }
 
-    fn dmp(&self) -> DmpSettings {
+    /// The DMP settings.
+    pub fn dmp(&self) -> DmpSettings {
         DmpSettings {
             basis_functions: self.basis,
             ..DmpSettings::default()
         }
     }
-}
 
-/// The files named, folders expanded.
-pub fn expand(paths: &[PathBuf]) -> anyhow::Result<Vec<PathBuf>> {
-    let mut out = Vec::new();
-    for path in paths {
-        if path.is_dir() {
-            let mut found: Vec<PathBuf> = std::fs::read_dir(path)
-                .with_context(|| format!("{}: cannot list folder", path.display()))?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| {
-                    p.extension()
-                        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
-                })
-                .collect();
-            found.sort();
-            if found.is_empty() {
-                bail!("{}: folder holds no .mcap file", path.display());
-            }
-            out.extend(found);
-        } else {
-            out.push(path.clone());
+    /// The policy for unusable demos.
+    pub fn unusable(&self) -> Unusable {
+        match self.unusable {
+            UnusableArg::Fail => Unusable::Fail,
+            UnusableArg::Skip => Unusable::Skip,
         }
     }
-    Ok(out)
 }
 
-/// The model of every demo in the inputs.
+/// The model of every demo in the inputs, and the raw demos it was built
+/// from (in the model's order).
 pub fn load_model(args: &InputArgs) -> anyhow::Result<(Vec<RawDemo>, Arc<Model>)> {
     let raw = args.load.load_demos()?;
-    model_of(raw, &args.prep(), args.dmp())
+    model_of(raw, &args.prep(), args.dmp(), args.unusable())
 }
 
-/// The model of the given demos with explicit settings.
+/// The model of the given demos with explicit settings; notices go to
+/// stderr.
 pub fn model_of(
     raw: Vec<RawDemo>,
     prep: &PrepSettings,
     dmp: DmpSettings,
+    unusable: Unusable,
 ) -> anyhow::Result<(Vec<RawDemo>, Arc<Model>)> {
-    let prepared = raw
+    let built = build_model(&raw, prep, dmp, unusable)?;
+    print_notices(&built.notices);
+    let mut raw: Vec<Option<RawDemo>> = raw.into_iter().map(Some).collect();
+    let used = built
+        .used
         .iter()
-        .map(|r| prepare(r, prep))
-        .collect::<Result<Vec<_>, _>>()?;
-    if prepared.len() < 2 {
-        eprintln!(
-            "note: only {} demonstration: S needs two or more and is 0 here",
-            prepared.len()
-        );
-    }
-    let model = Model::new(prepared, dmp)?;
-    Ok((raw, Arc::new(model)))
+        .filter_map(|&i| raw.get_mut(i).and_then(Option::take))
+        .collect();
+    Ok((used, Arc::new(built.model)))
 }

@@ -5,9 +5,7 @@ use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use dmpscope_core::landscape::{self, Axis, AxisScale, Grid, Landscape};
-use dmpscope_core::presets::preset_rows;
-use dmpscope_core::{Extraction, Model, extract};
-use serde_json::json;
+use dmpscope_core::{Extraction, Model, Report, extract};
 
 use super::inputs::{InputArgs, load_model};
 use super::output::{progress_bar, write_text};
@@ -16,13 +14,15 @@ use super::output::{progress_bar, write_text};
 #[derive(Debug, clap::Args)]
 pub struct GridArgs {
     /// Points per axis.
-    #[arg(long, default_value_t = 128)]
+    #[arg(long, default_value_t = Grid::default().dm.n)]
     pub grid: usize,
     /// D/M range.
-    #[arg(long, num_args = 2, value_names = ["LO", "HI"], default_values_t = [0.1, 1000.0])]
+    #[arg(long, num_args = 2, value_names = ["LO", "HI"],
+          default_values_t = [Grid::default().dm.lo, Grid::default().dm.hi])]
     pub dm_range: Vec<f64>,
     /// K/M range.
-    #[arg(long, num_args = 2, value_names = ["LO", "HI"], default_values_t = [0.1, 1000.0])]
+    #[arg(long, num_args = 2, value_names = ["LO", "HI"],
+          default_values_t = [Grid::default().km.lo, Grid::default().km.hi])]
     pub km_range: Vec<f64>,
     /// Space the axes evenly instead of geometrically.
     #[arg(long)]
@@ -102,41 +102,24 @@ pub fn landscape_and_optimum(
     Ok((raw, model, land, optimum))
 }
 
-/// Writes the landscape JSON (keys `dm`, `km`, `d_sum`, `s`, `j`, `optimum`,
-/// `presets`, `demos`, `k`).
+/// Writes the landscape JSON: the report of `dmpscope_core::report` (keys
+/// `k`, `demos`, `optimum`, `table`) plus the grid's axes `dm`, `km` and the
+/// grids `d_sum`, `s`, `j` as rows over D/M.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let (raw, model, land, optimum) = landscape_and_optimum(&args.input, &args.grid)?;
+    let (_, model, land, optimum) = landscape_and_optimum(&args.input, &args.grid)?;
     let k = args.grid.k;
-    let presets: Vec<_> = preset_rows(&model, k)
-        .into_iter()
-        .map(|r| {
-            json!({
-                "name": r.name, "dm": r.dm, "km": r.km, "zeta": r.zeta,
-                "d_mean": r.d_mean, "a_peak": r.a_peak,
-                "d_sum": r.d_sum, "s": r.s, "j": r.j,
-            })
-        })
-        .collect();
-    let demos: Vec<_> = raw
-        .iter()
-        .zip(model.demos())
-        .map(|(r, p)| json!({"name": r.name, "n_samples": r.stamps_ns.len(), "duration_s": p.duration_s}))
-        .collect();
-    let e = &optimum.eval;
-    let doc = json!({
-        "dm": land.dm,
-        "km": land.km,
-        "d_sum": land.rows(&land.d_sum),
-        "s": land.rows(&land.s),
-        "j": land.rows(&land.j(k)),
-        "optimum": {
-            "dm": e.dm, "km": e.km, "zeta": e.zeta, "j": optimum.j,
-            "s": e.s, "d_sum": e.d_sum, "on_edge": optimum.on_edge(),
-        },
-        "presets": presets,
-        "demos": demos,
-        "k": k,
-    });
+    let report = Report::new(&model, Some(&optimum), k);
+    let mut doc = serde_json::to_value(&report)?;
+    if let Some(map) = doc.as_object_mut() {
+        map.insert("dm".into(), serde_json::to_value(&land.dm)?);
+        map.insert("km".into(), serde_json::to_value(&land.km)?);
+        map.insert(
+            "d_sum".into(),
+            serde_json::to_value(land.rows(&land.d_sum))?,
+        );
+        map.insert("s".into(), serde_json::to_value(land.rows(&land.s))?);
+        map.insert("j".into(), serde_json::to_value(land.rows(&land.j(k)))?);
+    }
     let mut text = serde_json::to_string(&doc)?;
     text.push('\n');
     write_text(args.out.as_deref(), &text)

@@ -11,7 +11,6 @@ mod landscape;
 mod output;
 mod regen;
 mod rl;
-mod table;
 
 use clap::{CommandFactory, Parser, Subcommand};
 

@@ -4,6 +4,7 @@ use std::io::Write;
 use std::path::Path;
 
 use anyhow::Context;
+use dmpscope_core::Notice;
 
 /// Writes `text` to `out` (stdout when `None` or `-`).
 pub fn write_text(out: Option<&Path>, text: &str) -> anyhow::Result<()> {
@@ -33,4 +34,11 @@ pub fn progress_bar(total: u64, what: &str) -> indicatif::ProgressBar {
     }
     bar.set_message(what.to_owned());
     bar
+}
+
+/// Prints notices on stderr, one line each (`note: ...`, `warning: ...`).
+pub fn print_notices(notices: &[Notice]) {
+    for n in notices {
+        eprintln!("{n}");
+    }
 }

@@ -1,9 +1,8 @@
-//! What the app exports: a heat map as a PNG (grid resolution, scaled up
-//! with square pixels, K/M up), the gains as JSON, Table I as CSV or
-//! Markdown (`table.rs`).
+//! What the app exports besides the core's report (gains, extraction and
+//! Table I as JSON, CSV or Markdown): a heat map as a PNG (grid resolution,
+//! scaled up with square pixels, K/M up).
 
 use dmpscope_core::landscape::Grid;
-use dmpscope_core::{Extraction, TableRow};
 use eframe::egui::ColorImage;
 
 use super::heatmap::colour_image;
@@ -40,47 +39,6 @@ pub fn png_of(image: &ColorImage, scale: usize) -> Result<Vec<u8>, String> {
     Ok(out)
 }
 
-/// The gains as JSON: k, the extraction (when known, with its edge flags),
-/// and every row of Table I with its per-demo d_mean and a_peak.
-pub fn gains_json(
-    k: f64,
-    extraction: Option<&Extraction>,
-    rows: &[TableRow],
-    demos: &[String],
-) -> String {
-    let row = |r: &TableRow| {
-        serde_json::json!({
-            "name": r.name,
-            "dm": r.dm,
-            "km": r.km,
-            "zeta": r.zeta,
-            "s": r.s,
-            "d_sum": r.d_sum,
-            "j": r.j,
-            "d_mean_m": r.d_mean,
-            "a_peak": r.a_peak,
-        })
-    };
-    let extracted = extraction.map(|x| {
-        serde_json::json!({
-            "m": 1.0,
-            "dm": x.eval.dm,
-            "km": x.eval.km,
-            "zeta": x.eval.zeta,
-            "j": x.j,
-            "on_edge": x.on_edge(),
-            "edge": x.edges.describe(),
-        })
-    });
-    let value = serde_json::json!({
-        "k": k,
-        "extracted": extracted,
-        "demos": demos,
-        "rows": rows.iter().map(row).collect::<Vec<_>>(),
-    });
-    serde_json::to_string_pretty(&value).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -114,26 +72,5 @@ mod tests {
         assert_eq!(px(511, 255), &[high.r, high.g, high.b, 255]);
         // NaN (dm 3, km 1) top right: dark grey.
         assert_eq!(px(511, 0), &[40, 40, 40, 255]);
-    }
-
-    #[test]
-    fn gains_json_names_every_row() {
-        let row = TableRow {
-            name: "Hrstc1".into(),
-            dm: 25.0,
-            km: 156.25,
-            zeta: 1.0,
-            s: 0.3,
-            d_sum: 0.01,
-            j: 0.5,
-            d_mean: vec![0.001],
-            a_peak: vec![4.0],
-        };
-        let text = gains_json(20.0, None, &[row], &["demo".into()]);
-        let v: serde_json::Value = serde_json::from_str(&text).expect("json");
-        assert_eq!(v["k"], 20.0);
-        assert!(v["extracted"].is_null());
-        assert_eq!(v["rows"][0]["name"], "Hrstc1");
-        assert_eq!(v["rows"][0]["km"], 156.25);
     }
 }

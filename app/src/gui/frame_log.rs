@@ -71,29 +71,3 @@ fn summary(v: &[f64]) -> String {
         at(1.0)
     )
 }
-
-/// Always-on frame accounting for the browser tests: frames drawn and the
-/// longest interval between frames while the landscape was computing.
-#[derive(Default)]
-pub struct FrameWatch {
-    last: Option<Instant>,
-    /// Frames seen.
-    pub frames: u64,
-    /// The longest frame interval while the landscape computed, ms.
-    pub longest_ms_computing: f64,
-}
-
-impl FrameWatch {
-    /// Records a frame; `complete` says whether the landscape is complete.
-    pub fn frame(&mut self, complete: bool) {
-        let now = Instant::now();
-        if let Some(last) = self.last
-            && !complete
-        {
-            let ms = now.duration_since(last).as_secs_f64() * 1e3;
-            self.longest_ms_computing = self.longest_ms_computing.max(ms);
-        }
-        self.last = Some(now);
-        self.frames += 1;
-    }
-}

@@ -1,34 +1,30 @@
-//! The desktop app: demos, the d / S / J heat maps with a draggable
-//! operating point, time plots and Table I, all live.
+//! The app's window (eframe): the session's state drawn as panels, views
+//! and dialogs.
 //!
-//! `app.rs` holds the state, `frame.rs` lays out the frame and `side.rs`
-//! the side panel; `worker.rs` fills the landscape off the frame;
-//! `heatmap.rs`, `plots.rs`, `table.rs` and `view3d/` (a custom wgpu
-//! pipeline) are the views; `settings.rs` what is persisted; `loading.rs`
-//! turns files into demos.
+//! `app.rs` is [`DmpApp`] (settings, session, view state, dialogs) and the
+//! frame; `panels/` holds the panels, functions that return [`Command`]s;
+//! `heatmap.rs`, `plots.rs` and `view3d/` (a custom wgpu pipeline) are the
+//! views; `view_state.rs` what the views remember; `file_dialog.rs` the
+//! dialogs (with the app's own browser where the system has none);
+//! `export.rs` the heat maps as PNG; `testing.rs` (feature `testing`) the
+//! browser tests' hook.
 
 mod app;
+mod commands;
 mod export;
 mod file_dialog;
-mod frame;
 mod frame_log;
 mod heatmap;
-mod loading;
+mod panels;
 mod plots;
-mod rl_panel;
-mod rl_run;
-mod settings;
-mod side;
-mod table;
-mod task;
-mod top_bar;
+#[cfg(feature = "testing")]
+mod testing;
 mod view3d;
-mod worker;
+mod view_state;
 
 pub use app::DmpApp;
-pub use rl_panel::RlChoices;
-pub use rl_run::Progress as RlProgress;
-pub use settings::Settings;
+pub use commands::{Command, Export, Map};
+pub use view_state::{RlChoices, ViewState};
 
 /// Opens the app window on `files` (the bundled sample when empty).
 #[cfg(not(target_arch = "wasm32"))]

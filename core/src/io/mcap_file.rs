@@ -20,7 +20,7 @@ use crate::error::{Error, Location, Result};
 pub const RECORD_LENGTH_LIMIT: usize = 256 << 20;
 
 /// The most bytes read from the input at once.
-const READ_PIECE: usize = 1 << 20;
+pub(crate) const READ_PIECE: usize = 1 << 20;
 
 /// Which way is up in the recording.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -44,14 +44,19 @@ impl UpAxis {
     }
 }
 
-/// How to read files.
-#[derive(Clone, Debug, Default, PartialEq)]
+/// How to read recordings (method.md sections 1 and 11): the CLI's loading
+/// flags and the app's Loading section are both this type.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct LoadOptions {
     /// Keep only these keys (TF child frames, pose-array indices) of
     /// multi-pose topics; empty keeps all.
     pub frames: Vec<String>,
     /// The recording's up axis.
     pub up: UpAxis,
+    /// What a demonstration is (applied by [`super::load_source`]; the MCAP
+    /// reader itself keeps one stream per topic and key).
+    pub demos: crate::group::Grouping,
 }
 
 /// What one file gave.

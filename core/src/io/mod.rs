@@ -17,6 +17,7 @@ pub mod foxglove_schemas;
 pub mod mcap_file;
 pub mod ros1;
 pub mod ros2;
+pub mod source;
 pub mod write;
 
 use std::borrow::Cow;
@@ -25,6 +26,7 @@ pub use mcap_file::{
     LoadOptions, Loaded, UpAxis, load_bytes, load_bytes_with, load_path, load_path_with,
     load_reader,
 };
+pub use source::{SourceData, SourceDemos, load_source, load_streams};
 
 /// One pose a decoder found in a message.
 #[derive(Clone, Debug, PartialEq)]

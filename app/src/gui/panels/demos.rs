@@ -1,0 +1,64 @@
+//! The demos found (include or exclude each; the ones the model had to
+//! leave out are marked) and the messages, coloured by level.
+
+use dmpscope_core::Level;
+use eframe::egui::{self, Color32};
+
+use super::super::commands::Command;
+use crate::session::{self, Session};
+
+/// The colour of a message of `level`.
+pub fn level_colour(level: Level) -> Color32 {
+    match level {
+        Level::Info => Color32::from_rgb(150, 180, 220),
+        Level::Warning => Color32::from_rgb(240, 180, 80),
+        Level::Error => Color32::from_rgb(240, 120, 100),
+    }
+}
+
+/// The demos list and the messages.
+pub fn demos_ui(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Command>) {
+    ui.heading("Demos");
+    let in_model = session.model_demos();
+    egui::ScrollArea::vertical()
+        .id_salt("demos")
+        .max_height(220.0)
+        .show(ui, |ui| {
+            for (i, entry) in session.demos().iter().enumerate() {
+                let info = &entry.info;
+                let mut text = format!(
+                    "{}  ({} samples, {:.2} s)",
+                    info.name, info.n_samples, info.duration_s
+                );
+                let left_out =
+                    entry.included && session.model().is_some() && !in_model.contains(&i);
+                if left_out {
+                    text.push_str("  left out: see the messages");
+                }
+                let mut included = entry.included;
+                let label = egui::RichText::new(text);
+                let label = if left_out {
+                    label.color(level_colour(Level::Warning))
+                } else {
+                    label
+                };
+                if ui.checkbox(&mut included, label).changed() {
+                    out.push(session::Command::SetIncluded { demo: i, included }.into());
+                }
+            }
+        });
+    if !session.messages().is_empty() {
+        ui.separator();
+        egui::ScrollArea::vertical()
+            .id_salt("messages")
+            .max_height(160.0)
+            .show(ui, |ui| {
+                for m in session.messages() {
+                    ui.colored_label(level_colour(m.level), &m.text);
+                }
+            });
+        if ui.small_button("Clear messages").clicked() {
+            out.push(session::Command::ClearMessages.into());
+        }
+    }
+}

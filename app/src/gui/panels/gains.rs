@@ -1,0 +1,84 @@
+//! The gains: k, the operating point (typed, or snapped to a preset or the
+//! optimum), the extracted optimum and, on the box's edge, the warning with
+//! a button that widens the box.
+
+use dmpscope_core::presets::PAPER_PRESETS;
+use eframe::egui::{self, Color32};
+
+use crate::session::{Session, Settings};
+
+/// The gains section.
+pub fn gains_ui(ui: &mut egui::Ui, session: &Session, s: &mut Settings) {
+    ui.heading("Gains");
+    ui.horizontal(|ui| {
+        let label = ui.label("k");
+        ui.add(egui::Slider::new(&mut s.k, 0.0..=200.0).logarithmic(true))
+            .labelled_by(label.id);
+    });
+    let (dm_axis, km_axis) = (s.grid.dm, s.grid.km);
+    ui.horizontal(|ui| {
+        let label = ui.label("D/M");
+        ui.add(
+            egui::DragValue::new(&mut s.op.0)
+                .speed(0.1)
+                .range(dm_axis.lo..=dm_axis.hi),
+        )
+        .labelled_by(label.id);
+        let label = ui.label("K/M");
+        ui.add(
+            egui::DragValue::new(&mut s.op.1)
+                .speed(0.5)
+                .range(km_axis.lo..=km_axis.hi),
+        )
+        .labelled_by(label.id);
+    });
+    ui.horizontal_wrapped(|ui| {
+        for p in PAPER_PRESETS {
+            if ui.button(p.name).clicked() {
+                s.op = (p.dm, p.km);
+            }
+        }
+        if let Some(x) = session.extraction()
+            && ui.button("Extracted").clicked()
+        {
+            s.op = (x.eval.dm, x.eval.km);
+        }
+    });
+    let Some(x) = session.extraction() else {
+        if session.extracting() {
+            ui.horizontal(|ui| {
+                ui.spinner();
+                ui.label("Extracting the optimum…");
+            });
+        } else {
+            ui.label("Extracted: waiting for the full landscape");
+        }
+        return;
+    };
+    ui.label(format!(
+        "Extracted (M:D:K) = 1 : {:.3} : {:.3}, zeta {:.3}, J {:.4}",
+        x.eval.dm, x.eval.km, x.eval.zeta, x.j
+    ));
+    if x.on_edge() {
+        ui.colored_label(
+            Color32::from_rgb(240, 180, 80),
+            format!("On the box edge: {}", x.edges.describe()),
+        );
+        if ui.button("Widen the box 10x that way").clicked() {
+            let e = x.edges;
+            let g = &mut s.grid;
+            if e.dm_low {
+                g.dm.lo /= 10.0;
+            }
+            if e.dm_high {
+                g.dm.hi *= 10.0;
+            }
+            if e.km_low {
+                g.km.lo /= 10.0;
+            }
+            if e.km_high {
+                g.km.hi *= 10.0;
+            }
+        }
+    }
+}

@@ -1,0 +1,92 @@
+//! How recordings are read, as on the command line (`--y-up`, `--frame`,
+//! `--demos`, `--rest-speed`, `--min-rest`, `--min-demo`): changing the up
+//! axis or the frame filter reads the recordings again, changing what a
+//! demo is only regroups what was read.
+
+use dmpscope_core::group::Grouping;
+use dmpscope_core::io::UpAxis;
+use eframe::egui;
+
+use super::super::view_state::ViewState;
+use crate::session::Settings;
+
+/// The Loading section.
+pub fn loading_ui(ui: &mut egui::Ui, s: &mut Settings, view: &mut ViewState) {
+    let load = &mut s.load;
+    egui::Grid::new("loading").show(ui, |ui| {
+        ui.label("up axis");
+        ui.horizontal(|ui| {
+            ui.radio_value(&mut load.up, UpAxis::ZUp, "z up (ROS, Foxglove)");
+            ui.radio_value(&mut load.up, UpAxis::YUp, "y up (OpenVR)");
+        });
+        ui.end_row();
+        let l = ui.label("frames");
+        let typed = ui
+            .add(
+                egui::TextEdit::singleline(&mut view.frames_text)
+                    .hint_text("all (or: hand_left, 1, ...)")
+                    .desired_width(160.0),
+            )
+            .labelled_by(l.id)
+            .on_hover_text(
+                "TF child frames or pose indices to keep, comma separated; Enter applies",
+            );
+        if typed.lost_focus() {
+            load.frames = view
+                .frames_text
+                .split(',')
+                .map(str::trim)
+                .filter(|f| !f.is_empty())
+                .map(str::to_owned)
+                .collect();
+        } else if !typed.has_focus() {
+            view.frames_text = load.frames.join(", ");
+        }
+        ui.end_row();
+        ui.label("a demo is");
+        ui.horizontal(|ui| {
+            let segmented = matches!(load.demos, Grouping::Segmented(_));
+            if ui
+                .radio(load.demos == Grouping::PerTopic, "a topic")
+                .on_hover_text("one per topic, TF child frame or pose index")
+                .clicked()
+            {
+                load.demos = Grouping::PerTopic;
+            }
+            if ui
+                .radio(load.demos == Grouping::PerFile, "a file")
+                .on_hover_text("each file's first stream")
+                .clicked()
+            {
+                load.demos = Grouping::PerFile;
+            }
+            if ui
+                .radio(segmented, "a segment")
+                .on_hover_text("continuous recordings cut at rest periods")
+                .clicked()
+            {
+                load.demos = Grouping::Segmented(view.segment);
+            }
+        });
+        ui.end_row();
+        if let Grouping::Segmented(seg) = &mut load.demos {
+            let rows: [(&str, &mut f64, f64, &str); 3] = [
+                ("rest speed", &mut seg.rest_speed, 0.005, " m/s"),
+                ("shortest rest", &mut seg.min_rest_s, 0.01, " s"),
+                ("shortest demo", &mut seg.min_segment_s, 0.01, " s"),
+            ];
+            for (name, value, speed, unit) in rows {
+                let l = ui.label(name);
+                ui.add(
+                    egui::DragValue::new(value)
+                        .speed(speed)
+                        .range(0.001..=100.0)
+                        .suffix(unit),
+                )
+                .labelled_by(l.id);
+                ui.end_row();
+            }
+            view.segment = *seg;
+        }
+    });
+}

@@ -1,0 +1,22 @@
+//! The panels: functions of the session (read only), the settings and the
+//! views' state, returning what they ask for as [`Command`]s that the app
+//! applies after the frame's layout.
+//!
+//! [`Command`]: super::Command
+
+mod central;
+mod demos;
+mod gains;
+mod loading;
+mod plots_panel;
+mod rl;
+mod settings;
+mod side;
+mod table;
+mod top_bar;
+
+pub use central::central_ui;
+pub use plots_panel::plots_ui;
+pub use side::side_ui;
+pub use table::table_ui;
+pub use top_bar::top_bar_ui;

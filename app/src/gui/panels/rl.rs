@@ -1,0 +1,134 @@
+//! The RL panel: pick the gains (operating point, extracted, a paper
+//! preset), train a PPO agent whose action is the forcing term on the demo
+//! shown in the plots, watch the reward curve and cancel; the learned path
+//! is drawn in the 3D view beside the demo and its LfD regeneration.
+
+use dmpscope_core::presets::PAPER_PRESETS;
+use dmpscope_core::rl::REACHED_M;
+use eframe::egui::{self, Color32};
+use egui_plot::{Line, Plot, PlotPoints};
+
+use super::super::commands::Command;
+use super::super::view_state::ViewState;
+use crate::session::{self, RlRequest, Session, Settings};
+
+fn chosen_gains(session: &Session, s: &Settings, choice: usize) -> Option<(String, f64, f64)> {
+    match choice {
+        0 => Some(("operating point".into(), s.op.0, s.op.1)),
+        1 => session
+            .extraction()
+            .map(|x| ("extracted".into(), x.eval.dm, x.eval.km)),
+        i => PAPER_PRESETS
+            .get(i - 2)
+            .map(|p| (p.name.to_owned(), p.dm, p.km)),
+    }
+}
+
+/// The RL section.
+pub fn rl_ui(
+    ui: &mut egui::Ui,
+    session: &Session,
+    s: &Settings,
+    view: &mut ViewState,
+    out: &mut Vec<Command>,
+) {
+    let names: Vec<String> = ["operating point", "extracted"]
+        .into_iter()
+        .map(str::to_owned)
+        .chain(PAPER_PRESETS.iter().map(|p| p.name.to_owned()))
+        .collect();
+    let c = &mut view.rl;
+    egui::ComboBox::from_label("gains")
+        .selected_text(names.get(c.gains).cloned().unwrap_or_default())
+        .show_ui(ui, |ui| {
+            for (i, n) in names.iter().enumerate() {
+                ui.selectable_value(&mut c.gains, i, n);
+            }
+        });
+    ui.horizontal(|ui| {
+        let l = ui.label("decisions");
+        ui.add(
+            egui::DragValue::new(&mut c.steps)
+                .range(400..=2_000_000)
+                .speed(1000),
+        )
+        .labelled_by(l.id);
+        let l = ui.label("seed");
+        ui.add(egui::DragValue::new(&mut c.seed)).labelled_by(l.id);
+    });
+    let run = session.rl();
+    let running = run.is_some_and(|(_, p)| !p.done);
+    ui.horizontal(|ui| {
+        let gains = chosen_gains(session, s, view.rl.gains);
+        let can = session.model().is_some() && gains.is_some() && !running;
+        if ui
+            .add_enabled(can, egui::Button::new("Train"))
+            .on_disabled_hover_text(
+                "needs demos and the chosen gains (the extracted ones once the landscape is done)",
+            )
+            .clicked()
+            && let Some((gains_name, dm, km)) = gains
+        {
+            let request = RlRequest {
+                demo: view.selected,
+                gains_name,
+                dm,
+                km,
+                steps: view.rl.steps,
+                seed: view.rl.seed,
+            };
+            out.push(session::Command::StartRl(request).into());
+        }
+        if running && ui.button("Cancel").clicked() {
+            out.push(session::Command::CancelRl.into());
+        }
+    });
+    let Some((request, p)) = run else {
+        ui.weak("Trains on the demo shown in the plots.");
+        return;
+    };
+    ui.label(format!(
+        "demo {} · {} (D/M {:.3}, K/M {:.3})",
+        request.demo + 1,
+        request.gains_name,
+        request.dm,
+        request.km
+    ));
+    let (done, total) = p.decisions;
+    let state = if p.cancelled { ", cancelled" } else { "" };
+    ui.add(
+        egui::ProgressBar::new(done as f32 / total.max(1) as f32).text(format!(
+            "{done}/{total} decisions, {:.1} s{state}",
+            p.seconds
+        )),
+    );
+    if let Some(g) = &p.greedy {
+        let reached = g.final_error <= REACHED_M;
+        ui.colored_label(
+            if reached {
+                Color32::from_rgb(120, 210, 120)
+            } else {
+                Color32::from_rgb(240, 160, 90)
+            },
+            format!(
+                "goal error {:.2} mm ({}), d {:.1} mm, a_peak {:.1}",
+                g.final_error * 1e3,
+                if reached { "reached" } else { "not reached" },
+                p.d * 1e3,
+                g.a_peak()
+            ),
+        );
+    }
+    let points: PlotPoints<'_> = p
+        .returns
+        .iter()
+        .enumerate()
+        .map(|(i, r)| [i as f64, *r])
+        .collect();
+    Plot::new("rl returns")
+        .height(110.0)
+        .y_axis_label("mean return")
+        .x_axis_label("iteration")
+        .allow_scroll(false)
+        .show(ui, |plot| plot.line(Line::new("return", points)));
+}

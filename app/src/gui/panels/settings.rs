@@ -1,0 +1,70 @@
+//! The computation's settings: the grid (points, ranges, spacing), the
+//! colour scale, Savitzky-Golay and the DMP's basis. Whatever changes here,
+//! the session recomputes exactly the stages it affects.
+
+use eframe::egui;
+
+use crate::session::Settings;
+
+/// The Settings section.
+pub fn settings_ui(ui: &mut egui::Ui, s: &mut Settings) {
+    egui::Grid::new("settings").show(ui, |ui| {
+        let l = ui.label("grid points");
+        let mut n = s.grid_points();
+        if ui
+            .add(egui::DragValue::new(&mut n).range(8..=512))
+            .labelled_by(l.id)
+            .changed()
+        {
+            s.set_grid_points(n);
+        }
+        ui.end_row();
+        for (name, axis) in [("D/M range", &mut s.grid.dm), ("K/M range", &mut s.grid.km)] {
+            let l = ui.label(name);
+            ui.horizontal(|ui| {
+                ui.add(
+                    egui::DragValue::new(&mut axis.lo)
+                        .speed(0.01)
+                        .range(1e-6..=1e6),
+                )
+                .labelled_by(l.id);
+                ui.add(
+                    egui::DragValue::new(&mut axis.hi)
+                        .speed(1.0)
+                        .range(1e-6..=1e7),
+                )
+                .labelled_by(l.id);
+            });
+            ui.end_row();
+        }
+        ui.label("axes");
+        let mut log = s.log_axes();
+        if ui.checkbox(&mut log, "log-spaced").changed() {
+            s.set_log_axes(log);
+        }
+        ui.end_row();
+        ui.label("colours");
+        ui.checkbox(&mut s.log_colour, "log scale");
+        ui.end_row();
+        let l = ui.label("SG window / order");
+        ui.horizontal(|ui| {
+            ui.add(egui::DragValue::new(&mut s.prep.sg_window).range(5..=101))
+                .labelled_by(l.id);
+            ui.add(egui::DragValue::new(&mut s.prep.sg_order).range(2..=6))
+                .labelled_by(l.id);
+        });
+        ui.end_row();
+        let l = ui.label("basis functions");
+        ui.add(egui::DragValue::new(&mut s.dmp.basis_functions).range(2..=500))
+            .labelled_by(l.id);
+        ui.end_row();
+    });
+    if s.prep.sg_window.is_multiple_of(2) {
+        s.prep.sg_window += 1;
+    }
+    if ui.button("Reset to the paper's settings").clicked() {
+        let keep = (s.load.clone(), s.op, s.log_colour);
+        *s = Settings::default();
+        (s.load, s.op, s.log_colour) = keep;
+    }
+}

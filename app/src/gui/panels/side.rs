@@ -1,0 +1,31 @@
+//! The side panel: the demos and messages, the gains, RL, and the Loading
+//! and Settings sections.
+
+use eframe::egui;
+
+use super::super::commands::Command;
+use super::super::view_state::ViewState;
+use super::{demos, gains, loading, rl, settings};
+use crate::session::{Session, Settings};
+
+/// The side panel.
+pub fn side_ui(
+    ui: &mut egui::Ui,
+    session: &Session,
+    s: &mut Settings,
+    view: &mut ViewState,
+) -> Vec<Command> {
+    let mut out = Vec::new();
+    demos::demos_ui(ui, session, &mut out);
+    ui.separator();
+    gains::gains_ui(ui, session, s);
+    ui.separator();
+    ui.collapsing("RL with DMP", |ui| {
+        rl::rl_ui(ui, session, s, view, &mut out)
+    });
+    ui.separator();
+    ui.collapsing("Loading", |ui| loading::loading_ui(ui, s, view));
+    ui.separator();
+    ui.collapsing("Settings", |ui| settings::settings_ui(ui, s));
+    out
+}

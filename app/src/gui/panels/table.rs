@@ -1,0 +1,83 @@
+//! Table I, live: one row per gain set (extracted, the paper's, the
+//! operating point) with D/M, K/M, zeta, S, sum d, J, the mean d_mean, the
+//! largest a_peak and each demo's d_mean; copied as Markdown or CSV (the
+//! core's report renders both).
+
+use dmpscope_core::TableRow;
+use eframe::egui;
+
+use super::super::commands::Command;
+use super::super::view_state::ViewState;
+use crate::session::{Session, Settings};
+
+/// The Table I panel.
+pub fn table_ui(
+    ui: &mut egui::Ui,
+    session: &Session,
+    s: &mut Settings,
+    _view: &mut ViewState,
+) -> Vec<Command> {
+    let Some(report) = session.report(s.k) else {
+        return Vec::new();
+    };
+    ui.horizontal(|ui| {
+        ui.label(egui::RichText::new("Table I").strong());
+        if ui.button("Copy Markdown").clicked() {
+            ui.ctx().copy_text(report.markdown());
+        }
+        if ui.button("Copy CSV").clicked() {
+            ui.ctx().copy_text(report.csv());
+        }
+    });
+    let names = report.demo_names();
+    egui::ScrollArea::horizontal().show(ui, |ui| {
+        egui::Grid::new("table-i").striped(true).show(ui, |ui| {
+            for h in [
+                "gains",
+                "D/M",
+                "K/M",
+                "zeta",
+                "S",
+                "sum d [m]",
+                "J",
+                "mean d_mean [mm]",
+                "max a_peak",
+            ] {
+                ui.label(egui::RichText::new(h).strong());
+            }
+            for (i, name) in names.iter().enumerate() {
+                ui.label(egui::RichText::new(format!("d {}", short(name, i))).strong());
+            }
+            ui.end_row();
+            for r in &report.table {
+                row(ui, r);
+                ui.end_row();
+            }
+        });
+    });
+    Vec::new()
+}
+
+fn row(ui: &mut egui::Ui, r: &TableRow) {
+    let c = r.cells();
+    for cell in &c[..7] {
+        ui.label(cell);
+    }
+    let mean = r.d_mean.iter().sum::<f64>() / r.d_mean.len().max(1) as f64;
+    ui.label(format!("{:.3}", mean * 1e3));
+    ui.label(format!(
+        "{:.2}",
+        r.a_peak.iter().fold(0.0f64, |a, &b| a.max(b))
+    ));
+    for d in &r.d_mean {
+        ui.label(format!("{:.3}", d * 1e3));
+    }
+}
+
+/// A short column title for a demo: its topic's last part.
+fn short(name: &str, i: usize) -> String {
+    name.rsplit(['/', ':'])
+        .next()
+        .filter(|s| !s.is_empty())
+        .map_or_else(|| format!("{}", i + 1), str::to_owned)
+}

@@ -1,0 +1,88 @@
+//! The top bar: Open (files, a folder), Export, what is loaded, the loading
+//! and landscape progress with Cancel or Restart.
+
+use eframe::egui;
+
+use super::super::commands::{Command, Export, Map};
+use super::super::view_state::ViewState;
+use crate::session::{self, Session, Settings, Status};
+
+/// The top bar.
+pub fn top_bar_ui(
+    ui: &mut egui::Ui,
+    session: &Session,
+    _settings: &mut Settings,
+    _view: &mut ViewState,
+) -> Vec<Command> {
+    let mut out = Vec::new();
+    ui.horizontal(|ui| {
+        ui.strong("dmpscope");
+        if ui.button("Open…").clicked() {
+            out.push(Command::Open { folder: false });
+        }
+        if cfg!(not(target_arch = "wasm32")) {
+            if ui
+                .button("Open folder…")
+                .on_hover_text("a rosbag2 folder, or any folder of .mcap files")
+                .clicked()
+            {
+                out.push(Command::Open { folder: true });
+            }
+            if ui
+                .button("Browse…")
+                .on_hover_text("dmpscope's own file browser")
+                .clicked()
+            {
+                out.push(Command::Browse);
+            }
+        }
+        ui.menu_button("Export", |ui| export_menu(ui, session, &mut out));
+        ui.label(format!(
+            "{} file(s), {} demos",
+            session.sources().count(),
+            session.demos().len()
+        ));
+        if session.loading() {
+            ui.spinner();
+            ui.label("loading…");
+        }
+        match session.status() {
+            Status::Computing(done, total) if total > 0 => {
+                ui.add(
+                    egui::ProgressBar::new(done as f32 / total as f32)
+                        .desired_width(200.0)
+                        .text(format!("landscape {done}/{total}")),
+                );
+                if ui.button("Cancel").clicked() {
+                    out.push(session::Command::CancelLandscape.into());
+                }
+            }
+            Status::Cancelled(done, total) => {
+                ui.label(format!("landscape cancelled at {done}/{total}"));
+                if ui.button("Restart").clicked() {
+                    out.push(session::Command::RestartLandscape.into());
+                }
+            }
+            _ => {}
+        }
+        ui.weak("or drop .mcap / .csv files on the window");
+    });
+    out
+}
+
+fn export_menu(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Command>) {
+    let mut item = |ui: &mut egui::Ui, enabled: bool, label: &str, export: Export| {
+        if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
+            out.push(Command::Export(export));
+            ui.close();
+        }
+    };
+    let maps = session.shown().is_some();
+    item(ui, maps, "J map (PNG)", Export::Map(Map::J));
+    item(ui, maps, "sum d map (PNG)", Export::Map(Map::DSum));
+    item(ui, maps, "S map (PNG)", Export::Map(Map::S));
+    let model = session.model().is_some();
+    item(ui, model, "Gains and Table I (JSON)", Export::ReportJson);
+    item(ui, model, "Table I (CSV)", Export::TableCsv);
+    item(ui, model, "Table I (Markdown)", Export::TableMarkdown);
+}

@@ -1,0 +1,88 @@
+//! The browser tests' view of the app (feature `testing`, off in release
+//! builds): `window.dmpscope_state()` returns [`DmpApp::test_state`], and
+//! [`FrameWatch`] counts frames. Nothing here recomputes the pipeline: it
+//! reads what the session already holds.
+
+use eframe::egui;
+use web_time::Instant;
+
+use super::app::DmpApp;
+
+/// Frames drawn and the longest interval between frames while the
+/// landscape was computing.
+#[derive(Default)]
+pub struct FrameWatch {
+    last: Option<Instant>,
+    frames: u64,
+    longest_ms_computing: f64,
+}
+
+impl FrameWatch {
+    /// Records a frame; `complete` says whether the landscape is complete.
+    pub fn frame(&mut self, complete: bool) {
+        let now = Instant::now();
+        if let Some(last) = self.last
+            && !complete
+        {
+            let ms = now.duration_since(last).as_secs_f64() * 1e3;
+            self.longest_ms_computing = self.longest_ms_computing.max(ms);
+        }
+        self.last = Some(now);
+        self.frames += 1;
+    }
+}
+
+impl DmpApp {
+    /// What the browser tests read: demos, operating point, optimum,
+    /// landscape progress, a checksum of the regenerated paths at the
+    /// operating point, Table I's rows, frame and slice timings, messages.
+    pub fn test_state(&self, ctx: &egui::Context) -> serde_json::Value {
+        let session = self.session();
+        let (dm, km) = self.settings.op;
+        let (done, total) = session
+            .shown()
+            .map_or((0, 0), |s| (s.snapshot.done, s.snapshot.total));
+        let regen_checksum: Option<f64> = session.model().map(|_| {
+            session
+                .paths()
+                .iter()
+                .flat_map(|r| &r.y)
+                .map(|p| p[0] + 2.0 * p[1] + 3.0 * p[2])
+                .sum()
+        });
+        let rows: Vec<_> = session
+            .table_rows()
+            .iter()
+            .map(|r| serde_json::json!({"name": r.name, "dm": r.dm, "km": r.km, "j": r.j}))
+            .collect();
+        let names: Vec<&str> = session
+            .model()
+            .map(|m| m.demos().iter().map(|d| d.name.as_str()).collect())
+            .unwrap_or_default();
+        let messages: Vec<&str> = session.messages().iter().map(|m| m.text.as_str()).collect();
+        let page = session.landscape_page_time();
+        let causes: Vec<String> = ctx
+            .repaint_causes()
+            .iter()
+            .map(ToString::to_string)
+            .collect();
+        serde_json::json!({
+            "demos": names,
+            "loading": session.loading(),
+            "op": [dm, km],
+            "optimum": session.extraction().map(|x| serde_json::json!({
+                "dm": x.eval.dm, "km": x.eval.km, "j": x.j,
+            })),
+            "landscape": {"done": done, "total": total},
+            "regen_checksum": regen_checksum,
+            "rows": rows,
+            "frames": self.frame_watch.frames,
+            "longest_frame_ms_computing": self.frame_watch.longest_ms_computing,
+            "longest_slice_ms": page.longest_ms,
+            "compute_ms": page.total_ms,
+            "messages": messages,
+            "status": session.status().describe(),
+            "repaint_causes": causes,
+        })
+    }
+}

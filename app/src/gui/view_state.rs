@@ -1,0 +1,79 @@
+//! What the views remember between frames that is not a setting and not
+//! the session's: the selected demo, the time cursor, the 3D camera, the
+//! heat maps' textures, the RL panel's choices, text being typed.
+
+use dmpscope_core::segment::SegmentSettings;
+use eframe::egui_wgpu;
+
+use super::heatmap::Cache;
+use super::view3d::View3d;
+use crate::session::Session;
+
+/// The RL panel's choices.
+#[derive(Clone, Debug)]
+pub struct RlChoices {
+    /// 0: the operating point, 1: the extracted gains, 2 + i: preset i.
+    pub gains: usize,
+    /// Decisions to train.
+    pub steps: usize,
+    /// The seed.
+    pub seed: u64,
+}
+
+impl Default for RlChoices {
+    fn default() -> Self {
+        Self {
+            gains: 1,
+            steps: 100_000,
+            seed: 1,
+        }
+    }
+}
+
+/// The views' state.
+pub struct ViewState {
+    /// The demo shown in the plots (a model demo index).
+    pub selected: usize,
+    /// The time cursor shared by the 3D view and the plots, unit time.
+    pub t: f64,
+    /// The 3D view's camera and toggles.
+    pub view3d: View3d,
+    /// The heat maps' textures: J, sum d, S.
+    pub maps: [Cache; 3],
+    /// The RL panel's choices.
+    pub rl: RlChoices,
+    /// The frame filter as typed (applied on Enter or leaving the field).
+    pub frames_text: String,
+    /// The segmentation thresholds, kept while demos are not segmented.
+    pub segment: SegmentSettings,
+    /// The model the views were set up for.
+    model_seen: Option<u64>,
+}
+
+impl ViewState {
+    /// The views' state, drawing the 3D view with `render_state` if any.
+    pub fn new(render_state: Option<&egui_wgpu::RenderState>) -> Self {
+        Self {
+            selected: 0,
+            t: 0.5,
+            view3d: View3d::new(render_state),
+            maps: Default::default(),
+            rl: RlChoices::default(),
+            frames_text: String::new(),
+            segment: SegmentSettings::default(),
+            model_seen: None,
+        }
+    }
+
+    /// Follows a new model: the camera fits it again and the selection
+    /// stays inside it.
+    pub fn follow(&mut self, session: &Session) {
+        let id = session.model_version();
+        if id != self.model_seen {
+            self.model_seen = id;
+            self.view3d.reset();
+        }
+        let n = session.model().map_or(0, |m| m.demos().len());
+        self.selected = self.selected.min(n.saturating_sub(1));
+    }
+}

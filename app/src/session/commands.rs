@@ -1,0 +1,33 @@
+//! What the user (or a test) asks the session to do, beyond changing
+//! [`super::Settings`]: the session's only other inputs.
+
+use dmpscope_core::Notice;
+
+use super::rl::RlRequest;
+use super::sources::Source;
+
+/// A request to the session, applied by [`super::Session::apply`].
+#[derive(Clone, Debug)]
+pub enum Command {
+    /// Open recordings (a drop, a dialog, the command line).
+    AddSources(Vec<Source>),
+    /// Include or exclude demo `demo` (an index into `Session::demos`).
+    SetIncluded {
+        /// The demo.
+        demo: usize,
+        /// Whether it takes part in the model.
+        included: bool,
+    },
+    /// Stop the landscape where it is.
+    CancelLandscape,
+    /// Compute the landscape again from the start.
+    RestartLandscape,
+    /// Train an RL agent.
+    StartRl(RlRequest),
+    /// Stop the RL training (the last policy stays).
+    CancelRl,
+    /// Forget every message.
+    ClearMessages,
+    /// Tell the user something (a dialog's answer, an export written).
+    Say(Notice),
+}

@@ -1,0 +1,663 @@
+//! The app's state, without egui: the recordings opened, their demos, the
+//! messages, the model, the landscape, the extraction, Table I, the
+//! operating point's paths and the RL run (ARCHITECTURE.md, "The data
+//! path").
+//!
+//! Two inputs change it: [`Settings`] (whatever set them: a widget, a reset,
+//! a test, an imported file) and [`Command`]s. [`Session::update`] is the one
+//! place that decides what to recompute: each stage keeps the typed key it
+//! was computed for and is redone only when its key changes:
+//!
+//! ```text
+//! stream options (frames, up axis)            -> a source's streams (a load job)
+//! + grouping                                  -> its demos
+//! demos + included + preprocessing + DMP      -> the model
+//! model + grid                                -> the landscape (a job)
+//! landscape + k                               -> the extraction (a job), Table I
+//! model + operating point + k                 -> the operating point's row and paths
+//! model                                       -> the RL run stays or goes
+//! ```
+//!
+//! Background work runs through one [`jobs::Runner`]; with
+//! [`jobs::Runner::inline`] every job finishes inside `update`, so tests
+//! drive the session synchronously, without egui and without sleeps.
+
+mod commands;
+pub mod jobs;
+pub mod landscape;
+pub mod messages;
+pub mod rl;
+pub mod settings;
+pub mod sources;
+mod status;
+
+use std::collections::BTreeSet;
+use std::sync::Arc;
+
+use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::landscape::Grid;
+use dmpscope_core::{
+    DemoInfo, Extraction, Level, Model, Notice, PrepSettings, RawDemo, Report, Rollout, TableRow,
+    Unusable, build_model, extract,
+};
+
+pub use commands::Command;
+pub use jobs::{Mode, PageTime, Runner};
+pub use landscape::{Shown, Snapshot};
+pub use rl::{Progress as RlProgress, RlRequest};
+pub use settings::Settings;
+pub use sources::Source;
+pub use status::Status;
+
+use jobs::{Job, Once, Update};
+use landscape::LandscapeWork;
+use messages::Messages;
+use rl::RlWork;
+use sources::SourceSlot;
+
+/// A demo in the demos list.
+#[derive(Clone, Debug)]
+pub struct DemoEntry {
+    /// The demo as loaded and grouped.
+    pub raw: RawDemo,
+    /// Its summary, computed once.
+    pub info: DemoInfo,
+    /// Whether it takes part in the model.
+    pub included: bool,
+}
+
+/// How many times each stage was computed (the invalidation tests read it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StageRuns {
+    /// Source loads started.
+    pub loads: usize,
+    /// Sources regrouped into demos.
+    pub groupings: usize,
+    /// Models built.
+    pub models: usize,
+    /// Landscapes started.
+    pub landscapes: usize,
+    /// Extractions started.
+    pub extractions: usize,
+    /// Preset tables computed.
+    pub tables: usize,
+    /// Operating points evaluated (row and paths).
+    pub points: usize,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+struct ModelKey {
+    demos: u64,
+    included: Vec<bool>,
+    prep: PrepSettings,
+    dmp: DmpSettings,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct LandscapeKey {
+    model: u64,
+    grid: Grid,
+}
+
+/// `f64`s are compared by their bits: a key changes when a value does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct ExtractionKey {
+    landscape: u64,
+    k: u64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct TableKey {
+    model: u64,
+    k: u64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct PointKey {
+    model: u64,
+    dm: u64,
+    km: u64,
+    k: u64,
+}
+
+struct ModelState {
+    key: ModelKey,
+    version: u64,
+    built: Result<Arc<Model>, String>,
+    /// For each model demo, its index in the demos list.
+    used: Vec<usize>,
+}
+
+struct LandscapeState {
+    key: LandscapeKey,
+    id: u64,
+    job: Option<Job<Snapshot>>,
+    shown: Option<Shown>,
+    cancelled: bool,
+    page_time: PageTime,
+}
+
+struct ExtractionState {
+    key: ExtractionKey,
+    job: Option<Job<dmpscope_core::Result<Extraction>>>,
+    result: Option<Extraction>,
+}
+
+struct PointState {
+    key: PointKey,
+    row: TableRow,
+    paths: Vec<Rollout>,
+}
+
+struct RlState {
+    model: u64,
+    request: RlRequest,
+    job: Option<Job<RlProgress>>,
+    progress: RlProgress,
+}
+
+/// The app's state (see the module's documentation).
+pub struct Session {
+    runner: Runner,
+    slots: Vec<SourceSlot>,
+    demos: Vec<DemoEntry>,
+    demos_version: u64,
+    /// Names of the demos the user excluded (kept across reloads).
+    excluded: BTreeSet<String>,
+    messages: Messages,
+    model: Option<ModelState>,
+    landscape: Option<LandscapeState>,
+    extraction: Option<ExtractionState>,
+    presets: Option<(TableKey, Vec<TableRow>)>,
+    point: Option<PointState>,
+    rl: Option<RlState>,
+    runs: StageRuns,
+    counter: u64,
+}
+
+impl Session {
+    /// An empty session whose background work runs with `runner`.
+    pub fn new(runner: Runner) -> Self {
+        Self {
+            runner,
+            slots: Vec::new(),
+            demos: Vec::new(),
+            demos_version: 0,
+            excluded: BTreeSet::new(),
+            messages: Messages::default(),
+            model: None,
+            landscape: None,
+            extraction: None,
+            presets: None,
+            point: None,
+            rl: None,
+            runs: StageRuns::default(),
+            counter: 0,
+        }
+    }
+
+    fn next_id(&mut self) -> u64 {
+        self.counter += 1;
+        self.counter
+    }
+
+    /// Applies a command; its effects are computed by the next
+    /// [`Session::update`].
+    pub fn apply(&mut self, command: Command) {
+        match command {
+            Command::AddSources(sources) => {
+                self.slots.extend(sources.into_iter().map(SourceSlot::new));
+            }
+            Command::SetIncluded { demo, included } => {
+                if let Some(d) = self.demos.get_mut(demo) {
+                    d.included = included;
+                    if included {
+                        self.excluded.remove(&d.raw.name);
+                    } else {
+                        self.excluded.insert(d.raw.name.clone());
+                    }
+                }
+            }
+            Command::CancelLandscape => {
+                if let Some(l) = &mut self.landscape
+                    && let Some(mut job) = l.job.take()
+                {
+                    job.cancel();
+                    l.cancelled = true;
+                }
+            }
+            Command::RestartLandscape => self.landscape = None,
+            Command::StartRl(request) => self.start_rl(request),
+            Command::CancelRl => {
+                if let Some(rl) = &mut self.rl
+                    && let Some(mut job) = rl.job.take()
+                {
+                    job.cancel();
+                    rl.progress.done = true;
+                    rl.progress.cancelled = true;
+                }
+            }
+            Command::ClearMessages => self.messages.clear(),
+            Command::Say(notice) => self.messages.push(notice),
+        }
+    }
+
+    /// Brings every stage up to date with `settings`: the one place that
+    /// compares keys and decides what to recompute. Cheap when nothing
+    /// changed.
+    pub fn update(&mut self, settings: &Settings) {
+        self.update_sources(settings);
+        self.update_model(settings);
+        self.update_landscape(settings);
+        self.update_extraction(settings);
+        self.update_tables(settings);
+        self.update_point(settings);
+        self.update_rl();
+    }
+
+    fn update_sources(&mut self, settings: &Settings) {
+        let mut changed = false;
+        for slot in &mut self.slots {
+            let news = slot.update(&settings.load, &self.runner);
+            self.runs.loads += news.loads_started;
+            self.runs.groupings += usize::from(news.regrouped);
+            changed |= news.demos_changed;
+            self.messages.extend(news.notices);
+        }
+        if changed {
+            let demos: Vec<DemoEntry> = self
+                .slots
+                .iter()
+                .flat_map(SourceSlot::demos)
+                .map(|raw| DemoEntry {
+                    info: raw.info(),
+                    included: !self.excluded.contains(&raw.name),
+                    raw: raw.clone(),
+                })
+                .collect();
+            self.demos = demos;
+            self.demos_version = self.next_id();
+        }
+    }
+
+    fn update_model(&mut self, settings: &Settings) {
+        if self.demos.is_empty() {
+            self.model = None;
+            return;
+        }
+        let key = ModelKey {
+            demos: self.demos_version,
+            included: self.demos.iter().map(|d| d.included).collect(),
+            prep: settings.prep,
+            dmp: settings.dmp,
+        };
+        if self.model.as_ref().is_some_and(|m| m.key == key) {
+            return;
+        }
+        self.runs.models += 1;
+        let chosen: Vec<usize> = (0..self.demos.len())
+            .filter(|&i| self.demos[i].included)
+            .collect();
+        let raws = chosen.iter().map(|&i| &self.demos[i].raw);
+        let (built, used) = match build_model(raws, &key.prep, key.dmp, Unusable::Skip) {
+            Ok(b) => {
+                self.messages.extend(b.notices);
+                let used = b.used.iter().map(|&i| chosen[i]).collect();
+                (Ok(Arc::new(b.model)), used)
+            }
+            Err(e) => {
+                let text = if chosen.is_empty() {
+                    "no demonstration is included: tick one in Demos".to_owned()
+                } else {
+                    e.to_string()
+                };
+                self.messages.say(Level::Warning, text.clone());
+                (Err(text), Vec::new())
+            }
+        };
+        let version = self.next_id();
+        self.model = Some(ModelState {
+            key,
+            version,
+            built,
+            used,
+        });
+    }
+
+    fn update_landscape(&mut self, settings: &Settings) {
+        let Some((model, version)) = self.model_and_version() else {
+            self.landscape = None;
+            return;
+        };
+        let key = LandscapeKey {
+            model: version,
+            grid: settings.grid,
+        };
+        if self.landscape.as_ref().is_none_or(|l| l.key != key) {
+            self.runs.landscapes += 1;
+            let job = match LandscapeWork::new(model, settings.grid, self.runner.threaded()) {
+                Ok(work) => {
+                    let mut job = self.runner.start("the landscape", work);
+                    if let Some(n) = job.take_notice() {
+                        self.messages.say(Level::Warning, n);
+                    }
+                    Some(job)
+                }
+                Err(e) => {
+                    self.messages.say(Level::Warning, format!("grid: {e}"));
+                    None
+                }
+            };
+            let id = self.next_id();
+            self.landscape = Some(LandscapeState {
+                key,
+                id,
+                job,
+                shown: None,
+                cancelled: false,
+                page_time: PageTime::default(),
+            });
+        }
+        let Some(l) = &mut self.landscape else { return };
+        let update = l.job.as_mut().and_then(Job::poll);
+        if let Some(job) = &l.job {
+            l.page_time = job.page_time();
+        }
+        let snapshot = match update {
+            Some(Update::Progress(s)) => Some(s),
+            Some(Update::Done(s)) => {
+                l.job = None;
+                Some(s)
+            }
+            Some(Update::Failed(e)) => {
+                l.job = None;
+                self.messages
+                    .say(Level::Error, format!("the landscape: {e}"));
+                None
+            }
+            None => None,
+        };
+        if let Some(s) = snapshot {
+            self.counter += 1;
+            l.shown = Some(Shown::new(s, settings.k, self.counter));
+        }
+        if let Some(shown) = &mut l.shown
+            && shown.k.to_bits() != settings.k.to_bits()
+        {
+            shown.set_k(settings.k);
+        }
+    }
+
+    fn update_extraction(&mut self, settings: &Settings) {
+        let complete = self.landscape.as_ref().and_then(|l| {
+            let shown = l.shown.as_ref()?;
+            shown.snapshot.complete().then_some((l.id, shown))
+        });
+        let (Some((id, shown)), Some((model, _))) = (complete, self.model_and_version()) else {
+            self.extraction = None;
+            return;
+        };
+        let key = ExtractionKey {
+            landscape: id,
+            k: settings.k.to_bits(),
+        };
+        if self.extraction.as_ref().is_none_or(|x| x.key != key) {
+            self.runs.extractions += 1;
+            let (landscape, k) = (shown.snapshot.landscape.clone(), settings.k);
+            let work = Once::new(move || extract(&model, &landscape, k));
+            self.extraction = Some(ExtractionState {
+                key,
+                job: Some(self.runner.start("the extraction", work)),
+                result: None,
+            });
+        }
+        let Some(x) = &mut self.extraction else {
+            return;
+        };
+        match x.job.as_mut().and_then(Job::poll) {
+            Some(Update::Done(Ok(found))) => {
+                x.job = None;
+                x.result = Some(found);
+            }
+            Some(Update::Done(Err(e))) => {
+                x.job = None;
+                self.messages
+                    .say(Level::Warning, format!("extraction: {e}"));
+            }
+            Some(Update::Failed(e)) => {
+                x.job = None;
+                self.messages.say(Level::Error, format!("extraction: {e}"));
+            }
+            Some(Update::Progress(_)) | None => {}
+        }
+    }
+
+    fn update_tables(&mut self, settings: &Settings) {
+        let Some((model, version)) = self.model_and_version() else {
+            self.presets = None;
+            return;
+        };
+        let key = TableKey {
+            model: version,
+            k: settings.k.to_bits(),
+        };
+        if self.presets.as_ref().is_none_or(|(k, _)| *k != key) {
+            self.runs.tables += 1;
+            let rows = dmpscope_core::presets::preset_rows(&model, settings.k);
+            self.presets = Some((key, rows));
+        }
+    }
+
+    fn update_point(&mut self, settings: &Settings) {
+        let Some((model, version)) = self.model_and_version() else {
+            self.point = None;
+            return;
+        };
+        let (dm, km) = settings.op;
+        let key = PointKey {
+            model: version,
+            dm: dm.to_bits(),
+            km: km.to_bits(),
+            k: settings.k.to_bits(),
+        };
+        if self.point.as_ref().is_none_or(|p| p.key != key) {
+            self.runs.points += 1;
+            let row = TableRow::from_eval("Operating point", &model.evaluate(dm, km), settings.k);
+            let paths = (0..model.demos().len())
+                .map(|i| model.rollout(i, dm, km))
+                .collect();
+            self.point = Some(PointState { key, row, paths });
+        }
+    }
+
+    fn update_rl(&mut self) {
+        let version = self.model_and_version().map(|(_, v)| v);
+        if self.rl.as_ref().is_some_and(|r| Some(r.model) != version) {
+            self.rl = None;
+        }
+        let Some(rl) = &mut self.rl else { return };
+        match rl.job.as_mut().and_then(Job::poll) {
+            Some(Update::Progress(p)) => rl.progress = p,
+            Some(Update::Done(p)) => {
+                rl.progress = p;
+                rl.job = None;
+            }
+            Some(Update::Failed(e)) => {
+                rl.job = None;
+                rl.progress.done = true;
+                self.messages.say(Level::Error, format!("RL: {e}"));
+            }
+            None => {}
+        }
+    }
+
+    fn start_rl(&mut self, request: RlRequest) {
+        let Some((model, version)) = self.model_and_version() else {
+            self.messages
+                .say(Level::Warning, "RL needs a model: open demos first");
+            return;
+        };
+        match RlWork::new(model, request.clone()) {
+            Ok(work) => {
+                let progress = RlProgress {
+                    decisions: (0, request.steps),
+                    ..RlProgress::default()
+                };
+                let mut job = self.runner.start("RL training", work);
+                if let Some(n) = job.take_notice() {
+                    self.messages.say(Level::Warning, n);
+                }
+                self.rl = Some(RlState {
+                    model: version,
+                    request,
+                    job: Some(job),
+                    progress,
+                });
+            }
+            Err(e) => self.messages.say(Level::Warning, format!("RL: {e}")),
+        }
+    }
+
+    fn model_and_version(&self) -> Option<(Arc<Model>, u64)> {
+        let m = self.model.as_ref()?;
+        m.built
+            .as_ref()
+            .ok()
+            .map(|model| (model.clone(), m.version))
+    }
+
+    /// The recordings opened, in order.
+    pub fn sources(&self) -> impl Iterator<Item = &Source> {
+        self.slots.iter().map(|s| &s.source)
+    }
+
+    /// Whether a recording is being read.
+    pub fn loading(&self) -> bool {
+        self.slots.iter().any(SourceSlot::loading)
+    }
+
+    /// The demos of every recording, in order.
+    pub fn demos(&self) -> &[DemoEntry] {
+        &self.demos
+    }
+
+    /// The messages, oldest first.
+    pub fn messages(&self) -> &[Notice] {
+        self.messages.list()
+    }
+
+    /// The model, when one could be built.
+    pub fn model(&self) -> Option<&Arc<Model>> {
+        self.model.as_ref().and_then(|m| m.built.as_ref().ok())
+    }
+
+    /// Identifies the current model: changes whenever a new one is built.
+    pub fn model_version(&self) -> Option<u64> {
+        self.model_and_version().map(|(_, v)| v)
+    }
+
+    /// For each model demo, its index in [`Session::demos`].
+    pub fn model_demos(&self) -> &[usize] {
+        self.model.as_ref().map_or(&[], |m| m.used.as_slice())
+    }
+
+    /// The landscape as the heat maps show it.
+    pub fn shown(&self) -> Option<&Shown> {
+        self.landscape.as_ref().and_then(|l| l.shown.as_ref())
+    }
+
+    /// Whether the landscape is being computed.
+    pub fn landscape_running(&self) -> bool {
+        self.landscape.as_ref().is_some_and(|l| l.job.is_some())
+    }
+
+    /// Whether the landscape is complete.
+    pub fn landscape_complete(&self) -> bool {
+        self.shown().is_some_and(|s| s.snapshot.complete())
+    }
+
+    /// The extracted gains for the current k, once known.
+    pub fn extraction(&self) -> Option<&Extraction> {
+        self.extraction.as_ref().and_then(|x| x.result.as_ref())
+    }
+
+    /// Whether the optimum is being extracted.
+    pub fn extracting(&self) -> bool {
+        self.extraction.as_ref().is_some_and(|x| x.job.is_some())
+    }
+
+    /// Table I: extracted (when known), the paper's gains, the operating
+    /// point.
+    pub fn table_rows(&self) -> Vec<TableRow> {
+        let mut rows: Vec<TableRow> = self
+            .extraction()
+            .map(|x| TableRow::from_eval("Extracted", &x.eval, x.k))
+            .into_iter()
+            .collect();
+        if let Some((_, presets)) = &self.presets {
+            rows.extend(presets.iter().cloned());
+        }
+        rows.extend(self.point.as_ref().map(|p| p.row.clone()));
+        rows
+    }
+
+    /// The report of the current model, extraction and Table I (the app's
+    /// JSON, CSV and Markdown exports).
+    pub fn report(&self, k: f64) -> Option<Report> {
+        let model = self.model()?;
+        Some(Report::with_rows(
+            model,
+            self.extraction(),
+            k,
+            self.table_rows(),
+        ))
+    }
+
+    /// Every model demo regenerated at the operating point.
+    pub fn paths(&self) -> &[Rollout] {
+        self.point.as_ref().map_or(&[], |p| p.paths.as_slice())
+    }
+
+    /// The RL run, if one was started: what it trains and how far it is.
+    pub fn rl(&self) -> Option<(&RlRequest, &RlProgress)> {
+        self.rl.as_ref().map(|r| (&r.request, &r.progress))
+    }
+
+    /// How many times each stage was computed.
+    pub fn runs(&self) -> StageRuns {
+        self.runs
+    }
+
+    /// Whether any background work is under way.
+    pub fn busy(&self) -> bool {
+        self.loading()
+            || self.landscape_running()
+            || self.extracting()
+            || self.rl.as_ref().is_some_and(|r| r.job.is_some())
+    }
+
+    /// Work done on the caller's thread by the landscape (the browser's
+    /// page thread).
+    pub fn landscape_page_time(&self) -> PageTime {
+        self.landscape
+            .as_ref()
+            .map(|l| l.page_time)
+            .unwrap_or_default()
+    }
+
+    /// What the window should say where the landscape goes.
+    pub fn status(&self) -> Status {
+        status::of(self)
+    }
+
+    fn landscape_cancelled(&self) -> bool {
+        self.landscape.as_ref().is_some_and(|l| l.cancelled)
+    }
+
+    fn model_error(&self) -> Option<&str> {
+        self.model
+            .as_ref()
+            .and_then(|m| m.built.as_ref().err())
+            .map(String::as_str)
+    }
+}

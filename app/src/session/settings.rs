@@ -1,0 +1,82 @@
+//! The user's settings, persisted between runs (eframe storage, the
+//! browser's local storage): the core's own serde types for loading,
+//! preprocessing, the DMP and the grid, so the app has every option the CLI
+//! has and every default is the core's.
+
+use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::io::LoadOptions;
+use dmpscope_core::landscape::{AxisScale, Grid};
+use dmpscope_core::presets::preset;
+use dmpscope_core::{DEFAULT_K, PrepSettings};
+use serde::{Deserialize, Serialize};
+
+/// Everything the user chose.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Settings {
+    /// How recordings are read (up axis, frame filter, what a demo is).
+    pub load: LoadOptions,
+    /// Preprocessing (Savitzky-Golay window and order).
+    pub prep: PrepSettings,
+    /// The DMP (basis functions).
+    pub dmp: DmpSettings,
+    /// The gain grid of the landscape.
+    pub grid: Grid,
+    /// Weight k of sum d in J.
+    pub k: f64,
+    /// The operating point (D/M, K/M).
+    pub op: (f64, f64),
+    /// Colour heat maps on a log scale.
+    pub log_colour: bool,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        let op = preset("Hrstc1").map_or((25.0, 156.25), |p| (p.dm, p.km));
+        Self {
+            load: LoadOptions::default(),
+            prep: PrepSettings::default(),
+            dmp: DmpSettings::default(),
+            grid: Grid::default(),
+            k: DEFAULT_K,
+            op,
+            log_colour: true,
+        }
+    }
+}
+
+impl Settings {
+    /// The defaults with `n` x `n` grid points (tests, quick looks).
+    pub fn with_grid_points(n: usize) -> Self {
+        let mut s = Self::default();
+        s.set_grid_points(n);
+        s
+    }
+
+    /// Points per grid axis (both axes share it in the app).
+    pub fn grid_points(&self) -> usize {
+        self.grid.dm.n
+    }
+
+    /// Sets the points of both grid axes.
+    pub fn set_grid_points(&mut self, n: usize) {
+        self.grid.dm.n = n;
+        self.grid.km.n = n;
+    }
+
+    /// Whether the grid's axes are log-spaced.
+    pub fn log_axes(&self) -> bool {
+        self.grid.dm.scale == AxisScale::Log
+    }
+
+    /// Sets both axes' spacing.
+    pub fn set_log_axes(&mut self, log: bool) {
+        let scale = if log {
+            AxisScale::Log
+        } else {
+            AxisScale::Linear
+        };
+        self.grid.dm.scale = scale;
+        self.grid.km.scale = scale;
+    }
+}

@@ -1,0 +1,218 @@
+//! The recordings the user opened and what each gave: its streams, read in
+//! the background with the current loading options, and its demos, the
+//! streams grouped as the options say. A source stays in the list whatever
+//! happens to it, so a changed option reloads it and nothing the user opened
+//! is lost.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use dmpscope_core::group::{Grouping, group};
+use dmpscope_core::io::{LoadOptions, SourceData, SourceDemos, UpAxis, load_streams};
+use dmpscope_core::{Notice, RawDemo};
+
+use super::jobs::{Job, Once, Runner, Update};
+
+/// A recording to load: a file or folder on disk, or bytes with a name (a
+/// browser upload or drop, a bundled sample).
+#[derive(Clone, Debug)]
+pub enum Source {
+    /// A path: a file, or a folder (rosbag2 or any folder of `.mcap`).
+    Path(PathBuf),
+    /// Bytes and the file's name.
+    Bytes {
+        /// The file name (shown, and its extension picks the reader).
+        name: String,
+        /// The contents.
+        bytes: Arc<[u8]>,
+    },
+}
+
+impl Source {
+    /// The bundled sample, built into the program (native and web alike).
+    pub fn sample() -> Self {
+        static SAMPLE: &[u8] = include_bytes!("../../../assets/reach10.mcap");
+        Self::Bytes {
+            name: "reach10.mcap".into(),
+            bytes: Arc::from(SAMPLE),
+        }
+    }
+
+    /// The name shown for the source.
+    pub fn name(&self) -> String {
+        match self {
+            Self::Path(p) => p.display().to_string(),
+            Self::Bytes { name, .. } => name.clone(),
+        }
+    }
+
+    /// Loads the source's streams (the core's `load_streams`, as the CLI).
+    pub fn load(&self, options: &LoadOptions) -> Result<SourceDemos, String> {
+        let name = self.name();
+        let data = match self {
+            Self::Path(p) => SourceData::Path(p),
+            Self::Bytes { bytes, .. } => SourceData::Bytes(bytes),
+        };
+        load_streams(&name, data, options).map_err(|e| e.to_string())
+    }
+}
+
+/// What decides a source's streams: the options the reader applies.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StreamKey {
+    /// TF child frames / pose indices kept.
+    pub frames: Vec<String>,
+    /// The up axis.
+    pub up: UpAxis,
+}
+
+impl StreamKey {
+    /// The key of `options`.
+    pub fn of(options: &LoadOptions) -> Self {
+        Self {
+            frames: options.frames.clone(),
+            up: options.up,
+        }
+    }
+
+    fn options(&self) -> LoadOptions {
+        LoadOptions {
+            frames: self.frames.clone(),
+            up: self.up,
+            ..LoadOptions::default()
+        }
+    }
+}
+
+/// A loaded source's streams and the options they were read with.
+struct Streams {
+    key: StreamKey,
+    result: Result<SourceDemos, String>,
+}
+
+/// One opened recording.
+pub struct SourceSlot {
+    /// The recording.
+    pub source: Source,
+    streams: Option<Streams>,
+    pending: Option<(StreamKey, Job<Result<SourceDemos, String>>)>,
+    /// The demos of the streams for a grouping, and that grouping.
+    grouped: Option<(Grouping, Result<Vec<RawDemo>, String>)>,
+}
+
+/// What changed in a slot during [`SourceSlot::update`].
+#[derive(Default)]
+pub struct SlotNews {
+    /// Loads started.
+    pub loads_started: usize,
+    /// Whether its demos changed.
+    pub demos_changed: bool,
+    /// Whether its demos were regrouped.
+    pub regrouped: bool,
+    /// What to tell the user.
+    pub notices: Vec<Notice>,
+}
+
+impl SourceSlot {
+    /// A slot for `source`, not loaded yet.
+    pub fn new(source: Source) -> Self {
+        Self {
+            source,
+            streams: None,
+            pending: None,
+            grouped: None,
+        }
+    }
+
+    /// Whether the slot is being (re)loaded.
+    pub fn loading(&self) -> bool {
+        self.pending.is_some()
+    }
+
+    /// The demos the slot gives now (none while it first loads or when it
+    /// failed).
+    pub fn demos(&self) -> &[RawDemo] {
+        match &self.grouped {
+            Some((_, Ok(d))) => d,
+            _ => &[],
+        }
+    }
+
+    /// Why the slot gives no demos, when it failed.
+    pub fn error(&self) -> Option<&str> {
+        match (&self.streams, &self.grouped) {
+            (Some(Streams { result: Err(e), .. }), _) => Some(e),
+            (_, Some((_, Err(e)))) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// Brings the slot to `options`: starts a load when the stream options
+    /// changed (cancelling one under way for other options), takes a finished
+    /// load, and regroups when the streams or the grouping changed.
+    pub fn update(&mut self, options: &LoadOptions, runner: &Runner) -> SlotNews {
+        let mut news = SlotNews::default();
+        let key = StreamKey::of(options);
+        let current = self.streams.as_ref().is_some_and(|s| s.key == key);
+        let pending_for_key = self.pending.as_ref().is_some_and(|(k, _)| *k == key);
+        if !current && !pending_for_key {
+            let (source, load_options) = (self.source.clone(), key.options());
+            let work = Once::new(move || source.load(&load_options));
+            let mut job = runner.start("loading", work);
+            if let Some(n) = job.take_notice() {
+                news.notices.push(Notice::warning(n));
+            }
+            self.pending = Some((key, job));
+            news.loads_started += 1;
+        }
+        if let Some((key, job)) = &mut self.pending {
+            let finished = match job.poll() {
+                Some(Update::Done(result)) => Some(result),
+                Some(Update::Failed(e)) => Some(Err(format!("{}: {e}", self.source.name()))),
+                Some(Update::Progress(_)) | None => None,
+            };
+            if let Some(result) = finished {
+                match &result {
+                    Ok(loaded) => news.notices.extend(loaded.notices.iter().cloned()),
+                    Err(e) => news.notices.push(Notice::error(e.clone())),
+                }
+                self.streams = Some(Streams {
+                    key: key.clone(),
+                    result,
+                });
+                self.pending = None;
+                self.grouped = None;
+            }
+        }
+        let Some(streams) = &self.streams else {
+            return news;
+        };
+        if self
+            .grouped
+            .as_ref()
+            .is_none_or(|(g, _)| *g != options.demos)
+        {
+            let demos = match &streams.result {
+                Ok(loaded) => {
+                    group(loaded.demos.clone(), &options.demos).map_err(|e| e.to_string())
+                }
+                Err(e) => Err(e.clone()),
+            };
+            match (&demos, &streams.result) {
+                (Err(e), Ok(_)) => news.notices.push(Notice::error(e.clone())),
+                (Ok(d), Ok(loaded)) if d.is_empty() && !loaded.demos.is_empty() => {
+                    news.notices.push(Notice::warning(format!(
+                        "{}: segmentation found no movement between rests (lower the rest speed \
+                         or the shortest demo in Loading)",
+                        self.source.name()
+                    )));
+                }
+                _ => {}
+            }
+            self.grouped = Some((options.demos, demos));
+            news.demos_changed = true;
+            news.regrouped = true;
+        }
+        news
+    }
+}

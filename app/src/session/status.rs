@@ -1,0 +1,91 @@
+//! What the window says where the landscape goes, when there is no
+//! landscape to show (or it is still coming): a user is never left with a
+//! spinner that waits for nothing.
+
+use super::Session;
+
+/// Where the session is, in the words the window shows.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Status {
+    /// No recording is open.
+    NoSources,
+    /// Recordings are being read.
+    Loading,
+    /// The recordings gave no demonstration (each failure is in the
+    /// messages).
+    NoDemos,
+    /// Demos were found but none could be used, and why.
+    NoUsableDemo(String),
+    /// The grid is not valid, or the landscape could not start.
+    NoLandscape,
+    /// The landscape is being computed: points done and in all.
+    Computing(usize, usize),
+    /// The landscape was cancelled at this many points of all.
+    Cancelled(usize, usize),
+    /// The landscape is complete.
+    Ready,
+}
+
+impl Status {
+    /// The sentence the window shows, with what to do.
+    pub fn describe(&self) -> String {
+        match self {
+            Self::NoSources => {
+                "No recording is open: use Open… or drop .mcap / .csv files or a rosbag2 folder \
+                 on the window."
+                    .into()
+            }
+            Self::Loading => "Reading the recordings…".into(),
+            Self::NoDemos => "No demonstration was found in the recordings opened (the messages \
+                              say why). Open a recording with a pose topic, or change the \
+                              Loading options (frame filter, what a demo is)."
+                .into(),
+            Self::NoUsableDemo(why) => format!(
+                "No demonstration can be used: {why}. Open other recordings, include other \
+                 demos, or change the Loading or preprocessing settings."
+            ),
+            Self::NoLandscape => {
+                "The landscape cannot be computed with these grid settings (see the messages)."
+                    .into()
+            }
+            Self::Computing(_, 0) => "Computing the landscape…".into(),
+            Self::Computing(done, total) => format!("Computing the landscape… {done}/{total}"),
+            Self::Cancelled(done, total) => {
+                format!("The landscape was cancelled at {done}/{total} points.")
+            }
+            Self::Ready => "The landscape is complete.".into(),
+        }
+    }
+}
+
+/// The status of `session`.
+pub(super) fn of(session: &Session) -> Status {
+    if session.slots.is_empty() {
+        return Status::NoSources;
+    }
+    if session.demos.is_empty() {
+        return if session.loading() {
+            Status::Loading
+        } else {
+            Status::NoDemos
+        };
+    }
+    if let Some(why) = session.model_error() {
+        return Status::NoUsableDemo(why.to_owned());
+    }
+    let Some(shown) = session.shown() else {
+        return if session.landscape_running() || session.model().is_none() {
+            Status::Computing(0, 0)
+        } else {
+            Status::NoLandscape
+        };
+    };
+    let (done, total) = (shown.snapshot.done, shown.snapshot.total);
+    if done == total {
+        Status::Ready
+    } else if session.landscape_cancelled() {
+        Status::Cancelled(done, total)
+    } else {
+        Status::Computing(done, total)
+    }
+}

@@ -1,0 +1,77 @@
+//! From raw demonstrations to a fitted [`Model`], with an explicit policy for
+//! the demos that cannot be used (method.md section 11): the CLI and the app
+//! both build their model here.
+
+use serde::{Deserialize, Serialize};
+
+use crate::demo::RawDemo;
+use crate::dmp::DmpSettings;
+use crate::error::{Error, Result};
+use crate::model::Model;
+use crate::notice::Notice;
+use crate::prepare::{PrepSettings, prepare};
+
+/// What to do with a demonstration that cannot be prepared (too few samples,
+/// a non-finite value, stamps that ask for too many points).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Unusable {
+    /// Leave it out with a warning naming it and why; fail only when no
+    /// demonstration is left.
+    #[default]
+    Skip,
+    /// Stop at the first one.
+    Fail,
+}
+
+/// A model and how it came about.
+#[derive(Debug)]
+pub struct Built {
+    /// The model of the usable demonstrations.
+    pub model: Model,
+    /// For each of the model's demos, its index in the input.
+    pub used: Vec<usize>,
+    /// Demos left out, and a note when S cannot be computed (one demo).
+    pub notices: Vec<Notice>,
+}
+
+/// Prepares every demo and fits the model of the usable ones.
+pub fn build_model<'a>(
+    demos: impl IntoIterator<Item = &'a RawDemo>,
+    prep: &PrepSettings,
+    dmp: DmpSettings,
+    unusable: Unusable,
+) -> Result<Built> {
+    let mut prepared = Vec::new();
+    let mut used = Vec::new();
+    let mut notices = Vec::new();
+    let mut reasons = Vec::new();
+    for (i, raw) in demos.into_iter().enumerate() {
+        match prepare(raw, prep) {
+            Ok(p) => {
+                prepared.push(p);
+                used.push(i);
+            }
+            Err(e @ Error::InvalidSetting(_)) => return Err(e),
+            Err(e) if unusable == Unusable::Fail => return Err(e),
+            Err(e) => {
+                notices.push(Notice::warning(format!("left out {e}")));
+                reasons.push(e.to_string());
+            }
+        }
+    }
+    if prepared.is_empty() {
+        return Err(Error::NoUsableDemo { reasons });
+    }
+    if prepared.len() == 1 {
+        notices.push(Notice::info(
+            "only one demonstration: S needs two or more and is 0 here",
+        ));
+    }
+    let model = Model::new(prepared, dmp)?;
+    Ok(Built {
+        model,
+        used,
+        notices,
+    })
+}

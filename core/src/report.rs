@@ -1,0 +1,312 @@
+//! Table I and the extraction as one serde type, [`Report`], with its text,
+//! CSV and Markdown renderings (method.md sections 6 and 7). Every output
+//! of them comes from here: the CLI's `extract` (text or `--json`), its
+//! `landscape --out` (this shape plus the grids) and the app's exports.
+//!
+//! The JSON shape (`serde_json::to_value(&report)`):
+//!
+//! ```text
+//! {
+//!   "k": 20.0,                                   weight of sum d in J
+//!   "demos": [{"name", "n_samples", "duration_s"}],
+//!   "optimum": null | {"dm", "km", "zeta", "j", "s", "d_sum",
+//!                      "on_edge", "edge", "grid_min_j", "iterations", "converged"},
+//!   "table": [{"name", "dm", "km", "zeta", "d_mean": [m per demo],
+//!              "a_peak": [m/s^2 per demo], "d_sum", "s", "j"}]
+//! }
+//! ```
+//!
+//! `edge` names the box sides the optimum lies on ("" when interior);
+//! `d_mean` and `a_peak` follow `demos`' order.
+
+use std::fmt::Write as _;
+
+use serde::{Deserialize, Serialize};
+
+use crate::extract::Extraction;
+use crate::model::{Model, PointEval};
+use crate::presets::preset_rows;
+
+/// One row of Table I: a gain set and what it gives on every demo.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TableRow {
+    /// What the gains are (a preset's name, `Extracted`, `Operating point`).
+    pub name: String,
+    /// D/M.
+    pub dm: f64,
+    /// K/M.
+    pub km: f64,
+    /// Damping ratio.
+    pub zeta: f64,
+    /// Human-likeness error per demo, metres over 1 s.
+    pub d_mean: Vec<f64>,
+    /// Peak acceleration per demo.
+    pub a_peak: Vec<f64>,
+    /// `sum d`.
+    pub d_sum: f64,
+    /// `S`.
+    pub s: f64,
+    /// `J` for the table's `k`.
+    pub j: f64,
+}
+
+impl TableRow {
+    /// A row from an evaluation.
+    pub fn from_eval(name: impl Into<String>, eval: &PointEval, k: f64) -> Self {
+        Self {
+            name: name.into(),
+            dm: eval.dm,
+            km: eval.km,
+            zeta: eval.zeta,
+            d_mean: eval.d.clone(),
+            a_peak: eval.a_peak.clone(),
+            d_sum: eval.d_sum,
+            s: eval.s,
+            j: eval.j(k),
+        }
+    }
+
+    /// The row's cells as the CSV and Markdown tables print them: name,
+    /// D/M, K/M, zeta, S, sum d, J, then `d_mean` per demo in mm, then
+    /// `a_peak` per demo.
+    pub fn cells(&self) -> Vec<String> {
+        let mut c = vec![
+            self.name.clone(),
+            format!("{:.3}", self.dm),
+            format!("{:.3}", self.km),
+            format!("{:.3}", self.zeta),
+            format!("{:.5}", self.s),
+            format!("{:.5}", self.d_sum),
+            format!("{:.5}", self.j),
+        ];
+        c.extend(self.d_mean.iter().map(|d| format!("{:.3}", d * 1e3)));
+        c.extend(self.a_peak.iter().map(|a| format!("{a:.2}")));
+        c
+    }
+}
+
+/// A demonstration as a report lists it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DemoSummary {
+    /// The demo's name, `file:topic`.
+    pub name: String,
+    /// Samples as recorded.
+    pub n_samples: usize,
+    /// Duration, seconds.
+    pub duration_s: f64,
+}
+
+/// The extracted gains as a report shows them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Optimum {
+    /// D/M.
+    pub dm: f64,
+    /// K/M.
+    pub km: f64,
+    /// Damping ratio.
+    pub zeta: f64,
+    /// `J` at the optimum.
+    pub j: f64,
+    /// `S` at the optimum.
+    pub s: f64,
+    /// `sum d` at the optimum, metres.
+    pub d_sum: f64,
+    /// Whether the optimum lies on the box's edge.
+    pub on_edge: bool,
+    /// The sides it lies on, in words ("" when interior).
+    pub edge: String,
+    /// `J` at the grid minimum the refinement started from.
+    pub grid_min_j: f64,
+    /// Nelder-Mead iterations.
+    pub iterations: usize,
+    /// Whether the simplex shrank below its tolerance.
+    pub converged: bool,
+}
+
+impl From<&Extraction> for Optimum {
+    fn from(x: &Extraction) -> Self {
+        Self {
+            dm: x.eval.dm,
+            km: x.eval.km,
+            zeta: x.eval.zeta,
+            j: x.j,
+            s: x.eval.s,
+            d_sum: x.eval.d_sum,
+            on_edge: x.on_edge(),
+            edge: x.edges.describe(),
+            grid_min_j: x.grid_min_j,
+            iterations: x.iterations,
+            converged: x.converged,
+        }
+    }
+}
+
+/// Table I with the extraction it compares against.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Report {
+    /// The weight `k` of sum d in J.
+    pub k: f64,
+    /// The model's demos, in order.
+    pub demos: Vec<DemoSummary>,
+    /// The extracted optimum, when known.
+    pub optimum: Option<Optimum>,
+    /// Table I: `Extracted` (when known), the paper's gains, then any others.
+    pub table: Vec<TableRow>,
+}
+
+/// Table I's rows: `Extracted` (when known), the five paper presets, then
+/// `extra`.
+pub fn table_rows(
+    model: &Model,
+    extraction: Option<&Extraction>,
+    k: f64,
+    extra: impl IntoIterator<Item = TableRow>,
+) -> Vec<TableRow> {
+    let mut rows: Vec<TableRow> = extraction
+        .map(|x| TableRow::from_eval("Extracted", &x.eval, k))
+        .into_iter()
+        .collect();
+    rows.extend(preset_rows(model, k));
+    rows.extend(extra);
+    rows
+}
+
+impl Report {
+    /// The report of `model` with the rows of [`table_rows`].
+    pub fn new(model: &Model, extraction: Option<&Extraction>, k: f64) -> Self {
+        Self::with_rows(model, extraction, k, table_rows(model, extraction, k, []))
+    }
+
+    /// The report of `model` with rows computed by the caller (the app's
+    /// cached ones).
+    pub fn with_rows(
+        model: &Model,
+        extraction: Option<&Extraction>,
+        k: f64,
+        table: Vec<TableRow>,
+    ) -> Self {
+        let demos = model
+            .demos()
+            .iter()
+            .map(|d| DemoSummary {
+                name: d.name.clone(),
+                n_samples: d.n_samples,
+                duration_s: d.duration_s,
+            })
+            .collect();
+        Self {
+            k,
+            demos,
+            optimum: extraction.map(Optimum::from),
+            table,
+        }
+    }
+
+    /// The demos' names.
+    pub fn demo_names(&self) -> Vec<String> {
+        self.demos.iter().map(|d| d.name.clone()).collect()
+    }
+
+    /// The optimum in words: `(M:D:K)`, zeta, J with S and sum d, the edge.
+    pub fn optimum_text(&self) -> String {
+        let Some(o) = &self.optimum else {
+            return "no optimum extracted\n".to_owned();
+        };
+        let mut s = String::new();
+        let _ = writeln!(s, "(M:D:K) = 1 : {:.4} : {:.4}", o.dm, o.km);
+        let _ = writeln!(s, "zeta    = {:.4}", o.zeta);
+        let _ = writeln!(
+            s,
+            "J       = {:.6}  (S = {:.6}, sum d = {:.6} m, k = {})",
+            o.j, o.s, o.d_sum, self.k
+        );
+        if o.on_edge {
+            let _ = writeln!(s, "on edge = yes: {} (widen the range)", o.edge);
+        } else {
+            let _ = writeln!(s, "on edge = no");
+        }
+        s
+    }
+
+    /// Table I for a terminal: one summary row per gain set, then
+    /// `d_mean` and `a_peak` per demo with a column per gain set.
+    pub fn table_text(&self) -> String {
+        let rows = &self.table;
+        let mut s = String::new();
+        let name_w = rows.iter().map(|r| r.name.len()).max().unwrap_or(4).max(9);
+        let _ = writeln!(
+            s,
+            "{:<name_w$}  {:>9}  {:>9}  {:>7}  {:>9}  {:>9}  {:>9}",
+            "gains", "D/M", "K/M", "zeta", "S", "sum d[m]", "J"
+        );
+        for r in rows {
+            let _ = writeln!(
+                s,
+                "{:<name_w$}  {:>9.3}  {:>9.3}  {:>7.3}  {:>9.5}  {:>9.5}  {:>9.5}",
+                r.name, r.dm, r.km, r.zeta, r.s, r.d_sum, r.j
+            );
+        }
+        let names = self.demo_names();
+        let demo_w = names.iter().map(String::len).max().unwrap_or(4).max(8);
+        let col_w = name_w.max(9);
+        type Pick = fn(&TableRow) -> &[f64];
+        let parts: [(&str, Pick, f64, usize); 2] = [
+            ("d_mean [mm]", |r| &r.d_mean, 1e3, 3),
+            ("a_peak [m/s^2]", |r| &r.a_peak, 1.0, 2),
+        ];
+        for (title, pick, scale, prec) in parts {
+            let _ = writeln!(s, "\nTable I: {title}");
+            let _ = write!(s, "{:<demo_w$}", "demo");
+            for r in rows {
+                let _ = write!(s, "  {:>col_w$}", r.name);
+            }
+            s.push('\n');
+            for (i, name) in names.iter().enumerate() {
+                let _ = write!(s, "{name:<demo_w$}");
+                for r in rows {
+                    let v = pick(r).get(i).copied().unwrap_or(f64::NAN);
+                    let _ = write!(s, "  {:>col_w$.prec$}", v * scale);
+                }
+                s.push('\n');
+            }
+            let _ = write!(s, "{:<demo_w$}", "mean");
+            for r in rows {
+                let c = pick(r);
+                let mean = c.iter().sum::<f64>() / c.len().max(1) as f64;
+                let _ = write!(s, "  {:>col_w$.prec$}", mean * scale);
+            }
+            s.push('\n');
+        }
+        s
+    }
+
+    /// Table I as Markdown.
+    pub fn markdown(&self) -> String {
+        let names = self.demo_names();
+        let mut head: Vec<String> = ["gains", "D/M", "K/M", "zeta", "S", "sum d [m]", "J"]
+            .map(str::to_owned)
+            .into();
+        head.extend(names.iter().map(|d| format!("d_mean {d} [mm]")));
+        head.extend(names.iter().map(|d| format!("a_peak {d}")));
+        let mut out = format!("| {} |\n|{}\n", head.join(" | "), "---|".repeat(head.len()));
+        for r in &self.table {
+            let _ = writeln!(out, "| {} |", r.cells().join(" | "));
+        }
+        out
+    }
+
+    /// Table I as CSV.
+    pub fn csv(&self) -> String {
+        let names = self.demo_names();
+        let mut head: Vec<String> = ["gains", "dm", "km", "zeta", "s", "d_sum", "j"]
+            .map(str::to_owned)
+            .into();
+        head.extend(names.iter().map(|d| format!("d_mean_mm:{d}")));
+        head.extend(names.iter().map(|d| format!("a_peak:{d}")));
+        let mut out = head.join(",") + "\n";
+        for r in &self.table {
+            out.push_str(&(r.cells().join(",") + "\n"));
+        }
+        out
+    }
+}

@@ -1,0 +1,226 @@
+//! The session driven headless and synchronously (no egui, no sleeps): each
+//! setting recomputes exactly its stages, and the session and the CLI give
+//! the same demos and the same landscape numbers for the same files and
+//! options.
+
+mod support;
+
+use dmpscope::session::{Command, Runner, Session, Settings, Source, StageRuns, Status};
+use dmpscope_core::group::Grouping;
+use dmpscope_core::io::UpAxis;
+use serde_json::Value;
+use support::{dmpscope, rosbag2_folder, text, tmp_path};
+
+fn session_on(sources: Vec<Source>, settings: &Settings) -> Session {
+    let mut s = Session::new(Runner::inline());
+    s.apply(Command::AddSources(sources));
+    s.update(settings);
+    s
+}
+
+/// What changed in the stage counters between two readings.
+fn delta(before: StageRuns, after: StageRuns) -> [usize; 7] {
+    [
+        after.loads - before.loads,
+        after.groupings - before.groupings,
+        after.models - before.models,
+        after.landscapes - before.landscapes,
+        after.extractions - before.extractions,
+        after.tables - before.tables,
+        after.points - before.points,
+    ]
+}
+
+#[test]
+fn each_setting_recomputes_exactly_its_stages() {
+    let mut settings = Settings::with_grid_points(8);
+    let mut session = session_on(vec![Source::sample()], &settings);
+    assert_eq!(session.status(), Status::Ready);
+    assert!(session.extraction().is_some());
+    assert_eq!(session.model().map(|m| m.demos().len()), Some(10));
+    //                                  loads group model land  extr table point
+    let check = |session: &mut Session, settings: &Settings, expect: [usize; 7], what: &str| {
+        let before = session.runs();
+        session.update(settings);
+        assert_eq!(delta(before, session.runs()), expect, "{what}");
+        assert!(!session.busy(), "{what}: inline jobs finish in the update");
+    };
+    check(
+        &mut session,
+        &settings,
+        [0, 0, 0, 0, 0, 0, 0],
+        "nothing changed",
+    );
+    settings.op = (12.0, 34.0);
+    check(
+        &mut session,
+        &settings,
+        [0, 0, 0, 0, 0, 0, 1],
+        "the operating point",
+    );
+    settings.k = 5.0;
+    check(&mut session, &settings, [0, 0, 0, 0, 1, 1, 1], "k");
+    settings.set_grid_points(9);
+    check(&mut session, &settings, [0, 0, 0, 1, 1, 0, 0], "the grid");
+    settings.grid.km.hi = 2000.0;
+    check(
+        &mut session,
+        &settings,
+        [0, 0, 0, 1, 1, 0, 0],
+        "the K/M range",
+    );
+    settings.prep.sg_window = 23;
+    check(
+        &mut session,
+        &settings,
+        [0, 0, 1, 1, 1, 1, 1],
+        "the SG window",
+    );
+    settings.dmp.basis_functions = 60;
+    check(&mut session, &settings, [0, 0, 1, 1, 1, 1, 1], "the basis");
+    session.apply(Command::SetIncluded {
+        demo: 3,
+        included: false,
+    });
+    check(
+        &mut session,
+        &settings,
+        [0, 0, 1, 1, 1, 1, 1],
+        "an excluded demo",
+    );
+    assert_eq!(session.model().map(|m| m.demos().len()), Some(9));
+    settings.load.demos = Grouping::PerFile;
+    check(
+        &mut session,
+        &settings,
+        [0, 1, 1, 1, 1, 1, 1],
+        "what a demo is",
+    );
+    settings.load.demos = Grouping::PerTopic;
+    check(
+        &mut session,
+        &settings,
+        [0, 1, 1, 1, 1, 1, 1],
+        "back to topics",
+    );
+    // The excluded demo stays excluded across the regrouping.
+    assert_eq!(session.model().map(|m| m.demos().len()), Some(9));
+    settings.load.up = UpAxis::YUp;
+    check(
+        &mut session,
+        &settings,
+        [1, 1, 1, 1, 1, 1, 1],
+        "the up axis",
+    );
+    settings.load.frames = vec!["hand".into()];
+    check(
+        &mut session,
+        &settings,
+        [1, 1, 1, 1, 1, 1, 1],
+        "the frame filter",
+    );
+    // Whatever set them: a whole new settings value (an imported file, a
+    // reset) is compared the same way.
+    let reset = Settings::with_grid_points(9);
+    check(&mut session, &reset, [1, 1, 1, 1, 1, 1, 1], "a reset");
+    check(
+        &mut session,
+        &reset.clone(),
+        [0, 0, 0, 0, 0, 0, 0],
+        "the same values again",
+    );
+}
+
+#[test]
+fn the_session_and_the_cli_give_the_same_demos_and_numbers() {
+    // A split rosbag2 recording, y-up, with a topic too short for a demo,
+    // and settings away from the defaults.
+    let bag = rosbag2_folder("same", &[0..3, 3..5], true);
+    let bag_arg = bag.to_str().expect("path");
+    let out = tmp_path("same.json");
+    let result = dmpscope(&[
+        "landscape",
+        bag_arg,
+        "--y-up",
+        "--sg-window",
+        "23",
+        "--basis",
+        "60",
+        "--grid",
+        "8",
+        "--km-range",
+        "0.5",
+        "800",
+        "--unusable",
+        "skip",
+        "--out",
+        out.to_str().expect("path"),
+    ]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    assert!(
+        text(&result.stderr).contains("/aborted"),
+        "the CLI names the skipped demo: {}",
+        text(&result.stderr)
+    );
+    let cli: Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).expect("json")).expect("valid");
+
+    let mut settings = Settings::with_grid_points(8);
+    settings.load.up = UpAxis::YUp;
+    settings.prep.sg_window = 23;
+    settings.dmp.basis_functions = 60;
+    settings.grid.km.lo = 0.5;
+    settings.grid.km.hi = 800.0;
+    let session = session_on(vec![Source::Path(bag.clone())], &settings);
+    assert!(
+        session
+            .messages()
+            .iter()
+            .any(|m| m.text.contains("/aborted")),
+        "the session names the skipped demo: {:?}",
+        session.messages()
+    );
+    let model = session.model().expect("model");
+    let names: Vec<&str> = model.demos().iter().map(|d| d.name.as_str()).collect();
+    let cli_names: Vec<&str> = cli["demos"]
+        .as_array()
+        .expect("demos")
+        .iter()
+        .map(|d| d["name"].as_str().expect("name"))
+        .collect();
+    assert_eq!(names, cli_names);
+    assert_eq!(names.len(), 5);
+    let land = &session.shown().expect("landscape").snapshot.landscape;
+    for (key, grid) in [("d_sum", &land.d_sum), ("s", &land.s)] {
+        let rows: Vec<Vec<f64>> = serde_json::from_value(cli[key].clone()).expect("rows");
+        assert_eq!(rows.concat(), *grid, "{key} differs");
+    }
+    let x = session.extraction().expect("optimum");
+    assert_eq!(cli["optimum"]["dm"].as_f64(), Some(x.eval.dm));
+    assert_eq!(cli["optimum"]["km"].as_f64(), Some(x.eval.km));
+    assert_eq!(cli["optimum"]["j"].as_f64(), Some(x.j));
+}
+
+#[test]
+fn a_folder_without_usable_demos_says_so_and_what_to_do() {
+    let empty = tmp_path("no-recordings");
+    std::fs::create_dir_all(&empty).expect("folder");
+    let session = session_on(vec![Source::Path(empty)], &Settings::with_grid_points(8));
+    assert_eq!(session.status(), Status::NoDemos);
+    assert!(
+        session
+            .messages()
+            .iter()
+            .any(|m| m.text.contains("holds no .mcap file")),
+        "{:?}",
+        session.messages()
+    );
+    assert!(session.status().describe().contains("Open a recording"));
+
+    let short = rosbag2_folder("only-short", &[0..0], true);
+    let session = session_on(vec![Source::Path(short)], &Settings::with_grid_points(8));
+    match session.status() {
+        Status::NoUsableDemo(why) => assert!(why.contains("/aborted"), "{why}"),
+        other => panic!("expected no usable demo, got {other:?}"),
+    }
+}
