@@ -141,7 +141,7 @@ fn a_bad_file_is_reported_in_the_window_and_nothing_loaded_is_lost() {
 
 #[test]
 fn a_rosbag2_folder_opens_as_in_the_cli() {
-    let bag = support::rosbag2_folder("gui-bag", &[0..2, 2..4], false);
+    let bag = support::rosbag2_folder("gui-bag", &[(0, 2), (2, 4)], false);
     let mut h = harness_on(vec![Source::Path(bag.clone())], Runner::inline());
     h.run_steps(1);
     let session = h.state().session();
@@ -170,7 +170,7 @@ fn a_rosbag2_folder_opens_as_in_the_cli() {
 
 #[test]
 fn a_folder_with_no_usable_demo_says_so_instead_of_a_spinner() {
-    let short = support::rosbag2_folder("gui-short", &[0..0], true);
+    let short = support::rosbag2_folder("gui-short", &[(0, 0)], true);
     let mut h = harness_on(vec![Source::Path(short)], Runner::inline());
     h.run_steps(1);
     assert!(matches!(

@@ -135,7 +135,7 @@ fn each_setting_recomputes_exactly_its_stages() {
 fn the_session_and_the_cli_give_the_same_demos_and_numbers() {
     // A split rosbag2 recording, y-up, with a topic too short for a demo,
     // and settings away from the defaults.
-    let bag = rosbag2_folder("same", &[0..3, 3..5], true);
+    let bag = rosbag2_folder("same", &[(0, 3), (3, 5)], true);
     let bag_arg = bag.to_str().expect("path");
     let out = tmp_path("same.json");
     let result = dmpscope(&[
@@ -217,7 +217,7 @@ fn a_folder_without_usable_demos_says_so_and_what_to_do() {
     );
     assert!(session.status().describe().contains("Open a recording"));
 
-    let short = rosbag2_folder("only-short", &[0..0], true);
+    let short = rosbag2_folder("only-short", &[(0, 0)], true);
     let session = session_on(vec![Source::Path(short)], &Settings::with_grid_points(8));
     match session.status() {
         Status::NoUsableDemo(why) => assert!(why.contains("/aborted"), "{why}"),

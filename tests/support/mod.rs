@@ -36,21 +36,23 @@ pub fn tmp_path(name: &str) -> PathBuf {
 }
 
 /// Writes a rosbag2 folder `name` (a `metadata.yaml` and one MCAP file per
-/// entry of `splits`, each holding the synthetic reaches `range` of the
-/// sample generator on topics `/hand_NN`) and returns its path. `short`
-/// adds, to the first file, a topic of 5 samples no demo can be made of.
-pub fn rosbag2_folder(name: &str, splits: &[std::ops::Range<usize>], short: bool) -> PathBuf {
+/// entry `(first, end)` of `splits`, each holding the synthetic reaches
+/// `first..end` of the sample generator on topics `/hand_NN`) and returns
+/// its path. `short` adds, to the first file, a topic of 5 samples no demo
+/// can be made of.
+pub fn rosbag2_folder(name: &str, splits: &[(usize, usize)], short: bool) -> PathBuf {
     use dmpscope_core::io::write::{TopicSamples, write_pose_stamped};
     let dir = tmp_path(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("bag folder");
     let demos = dmpscope_core::synth::reach_demos(
         7,
-        splits.iter().map(|r| r.end).max().unwrap_or(0),
+        splits.iter().map(|r| r.1).max().unwrap_or(0),
         1_700_000_000_000_000_000,
     );
     let mut files = Vec::new();
-    for (f, range) in splits.iter().enumerate() {
+    for (f, &(first, end)) in splits.iter().enumerate() {
+        let range = first..end;
         let topics: Vec<String> = range
             .clone()
             .map(|i| format!("/hand_{:02}", i + 1))
