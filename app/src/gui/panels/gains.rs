@@ -50,6 +50,8 @@ pub fn gains_ui(ui: &mut egui::Ui, session: &Session, s: &mut Settings) {
                 ui.spinner();
                 ui.label("Extracting the optimum…");
             });
+        } else if session.model().is_none() {
+            ui.weak("Extracted: needs demonstrations");
         } else {
             ui.label("Extracted: waiting for the full landscape");
         }

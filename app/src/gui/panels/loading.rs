@@ -16,8 +16,10 @@ pub fn loading_ui(ui: &mut egui::Ui, s: &mut Settings, view: &mut ViewState) {
     egui::Grid::new("loading").show(ui, |ui| {
         ui.label("up axis");
         ui.horizontal(|ui| {
-            ui.radio_value(&mut load.up, UpAxis::ZUp, "z up (ROS, Foxglove)");
-            ui.radio_value(&mut load.up, UpAxis::YUp, "y up (OpenVR)");
+            ui.radio_value(&mut load.up, UpAxis::ZUp, "z")
+                .on_hover_text("z up: ROS (REP 103), Foxglove");
+            ui.radio_value(&mut load.up, UpAxis::YUp, "y (OpenVR)")
+                .on_hover_text("y up: OpenVR's native frame, turned to z up");
         });
         ui.end_row();
         let l = ui.label("frames");
