@@ -1,0 +1,361 @@
+//! The stages of the session and the typed keys they are computed for:
+//! each `update_*` compares its stage's key with the settings' and
+//! recomputes only when they differ (called in order by
+//! [`Session::update`]).
+
+use std::sync::Arc;
+
+use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::landscape::Grid;
+use dmpscope_core::{
+    Extraction, Level, Model, PrepSettings, Rollout, TableRow, Unusable, build_model, extract,
+};
+
+use super::jobs::{Job, Once, Update};
+use super::landscape::{LandscapeWork, Shown, Snapshot};
+use super::rl::{Progress as RlProgress, RlRequest, RlWork};
+use super::{DemoEntry, PageTime, Session, Settings, SourceSlot};
+
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct ModelKey {
+    pub(super) demos: u64,
+    pub(super) included: Vec<bool>,
+    pub(super) prep: PrepSettings,
+    pub(super) dmp: DmpSettings,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct LandscapeKey {
+    pub(super) model: u64,
+    pub(super) grid: Grid,
+}
+
+/// `f64`s are compared by their bits: a key changes when a value does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct ExtractionKey {
+    pub(super) landscape: u64,
+    pub(super) k: u64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct TableKey {
+    pub(super) model: u64,
+    pub(super) k: u64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct PointKey {
+    pub(super) model: u64,
+    pub(super) dm: u64,
+    pub(super) km: u64,
+    pub(super) k: u64,
+}
+
+pub(super) struct ModelState {
+    pub(super) key: ModelKey,
+    pub(super) version: u64,
+    pub(super) built: Result<Arc<Model>, String>,
+    /// For each model demo, its index in the demos list.
+    pub(super) used: Vec<usize>,
+}
+
+pub(super) struct LandscapeState {
+    pub(super) key: LandscapeKey,
+    pub(super) id: u64,
+    pub(super) job: Option<Job<Snapshot>>,
+    pub(super) shown: Option<Shown>,
+    pub(super) cancelled: bool,
+    pub(super) page_time: PageTime,
+}
+
+pub(super) struct ExtractionState {
+    pub(super) key: ExtractionKey,
+    pub(super) job: Option<Job<dmpscope_core::Result<Extraction>>>,
+    pub(super) result: Option<Extraction>,
+}
+
+pub(super) struct PointState {
+    pub(super) key: PointKey,
+    pub(super) row: TableRow,
+    pub(super) paths: Vec<Rollout>,
+}
+
+pub(super) struct RlState {
+    pub(super) model: u64,
+    pub(super) request: RlRequest,
+    pub(super) job: Option<Job<RlProgress>>,
+    pub(super) progress: RlProgress,
+}
+
+impl Session {
+    pub(super) fn update_sources(&mut self, settings: &Settings) {
+        let mut changed = false;
+        for slot in &mut self.slots {
+            let news = slot.update(&settings.load, &self.runner);
+            self.runs.loads += news.loads_started;
+            self.runs.groupings += usize::from(news.regrouped);
+            changed |= news.demos_changed;
+            self.messages.extend(news.notices);
+        }
+        if changed {
+            let demos: Vec<DemoEntry> = self
+                .slots
+                .iter()
+                .flat_map(SourceSlot::demos)
+                .map(|raw| DemoEntry {
+                    info: raw.info(),
+                    included: !self.excluded.contains(&raw.name),
+                    raw: raw.clone(),
+                })
+                .collect();
+            self.demos = demos;
+            self.demos_version = self.next_id();
+        }
+    }
+
+    pub(super) fn update_model(&mut self, settings: &Settings) {
+        if self.demos.is_empty() {
+            self.model = None;
+            return;
+        }
+        let key = ModelKey {
+            demos: self.demos_version,
+            included: self.demos.iter().map(|d| d.included).collect(),
+            prep: settings.prep,
+            dmp: settings.dmp,
+        };
+        if self.model.as_ref().is_some_and(|m| m.key == key) {
+            return;
+        }
+        self.runs.models += 1;
+        let chosen: Vec<usize> = (0..self.demos.len())
+            .filter(|&i| self.demos[i].included)
+            .collect();
+        let raws = chosen.iter().map(|&i| &self.demos[i].raw);
+        let (built, used) = match build_model(raws, &key.prep, key.dmp, Unusable::Skip) {
+            Ok(b) => {
+                self.messages.extend(b.notices);
+                let used = b.used.iter().map(|&i| chosen[i]).collect();
+                (Ok(Arc::new(b.model)), used)
+            }
+            Err(e) => {
+                let text = if chosen.is_empty() {
+                    "no demonstration is included: tick one in Demos".to_owned()
+                } else {
+                    e.to_string()
+                };
+                self.messages.say(Level::Warning, text.clone());
+                (Err(text), Vec::new())
+            }
+        };
+        let version = self.next_id();
+        self.model = Some(ModelState {
+            key,
+            version,
+            built,
+            used,
+        });
+    }
+
+    pub(super) fn update_landscape(&mut self, settings: &Settings) {
+        let Some((model, version)) = self.model_and_version() else {
+            self.landscape = None;
+            return;
+        };
+        let key = LandscapeKey {
+            model: version,
+            grid: settings.grid,
+        };
+        if self.landscape.as_ref().is_none_or(|l| l.key != key) {
+            self.runs.landscapes += 1;
+            let job = match LandscapeWork::new(model, settings.grid, self.runner.threaded()) {
+                Ok(work) => {
+                    let mut job = self.runner.start("the landscape", work);
+                    if let Some(n) = job.take_notice() {
+                        self.messages.say(Level::Warning, n);
+                    }
+                    Some(job)
+                }
+                Err(e) => {
+                    self.messages.say(Level::Warning, format!("grid: {e}"));
+                    None
+                }
+            };
+            let id = self.next_id();
+            self.landscape = Some(LandscapeState {
+                key,
+                id,
+                job,
+                shown: None,
+                cancelled: false,
+                page_time: PageTime::default(),
+            });
+        }
+        let Some(l) = &mut self.landscape else { return };
+        let update = l.job.as_mut().and_then(Job::poll);
+        if let Some(job) = &l.job {
+            l.page_time = job.page_time();
+        }
+        let snapshot = match update {
+            Some(Update::Progress(s)) => Some(s),
+            Some(Update::Done(s)) => {
+                l.job = None;
+                Some(s)
+            }
+            Some(Update::Failed(e)) => {
+                l.job = None;
+                self.messages
+                    .say(Level::Error, format!("the landscape: {e}"));
+                None
+            }
+            None => None,
+        };
+        if let Some(s) = snapshot {
+            self.counter += 1;
+            l.shown = Some(Shown::new(s, settings.k, self.counter));
+        }
+        if let Some(shown) = &mut l.shown
+            && shown.k.to_bits() != settings.k.to_bits()
+        {
+            shown.set_k(settings.k);
+        }
+    }
+
+    pub(super) fn update_extraction(&mut self, settings: &Settings) {
+        let complete = self.landscape.as_ref().and_then(|l| {
+            let shown = l.shown.as_ref()?;
+            shown.snapshot.complete().then_some((l.id, shown))
+        });
+        let (Some((id, shown)), Some((model, _))) = (complete, self.model_and_version()) else {
+            self.extraction = None;
+            return;
+        };
+        let key = ExtractionKey {
+            landscape: id,
+            k: settings.k.to_bits(),
+        };
+        if self.extraction.as_ref().is_none_or(|x| x.key != key) {
+            self.runs.extractions += 1;
+            let (landscape, k) = (shown.snapshot.landscape.clone(), settings.k);
+            let work = Once::new(move || extract(&model, &landscape, k));
+            self.extraction = Some(ExtractionState {
+                key,
+                job: Some(self.runner.start("the extraction", work)),
+                result: None,
+            });
+        }
+        let Some(x) = &mut self.extraction else {
+            return;
+        };
+        match x.job.as_mut().and_then(Job::poll) {
+            Some(Update::Done(Ok(found))) => {
+                x.job = None;
+                x.result = Some(found);
+            }
+            Some(Update::Done(Err(e))) => {
+                x.job = None;
+                self.messages
+                    .say(Level::Warning, format!("extraction: {e}"));
+            }
+            Some(Update::Failed(e)) => {
+                x.job = None;
+                self.messages.say(Level::Error, format!("extraction: {e}"));
+            }
+            Some(Update::Progress(_)) | None => {}
+        }
+    }
+
+    pub(super) fn update_tables(&mut self, settings: &Settings) {
+        let Some((model, version)) = self.model_and_version() else {
+            self.presets = None;
+            return;
+        };
+        let key = TableKey {
+            model: version,
+            k: settings.k.to_bits(),
+        };
+        if self.presets.as_ref().is_none_or(|(k, _)| *k != key) {
+            self.runs.tables += 1;
+            let rows = dmpscope_core::presets::preset_rows(&model, settings.k);
+            self.presets = Some((key, rows));
+        }
+    }
+
+    pub(super) fn update_point(&mut self, settings: &Settings) {
+        let Some((model, version)) = self.model_and_version() else {
+            self.point = None;
+            return;
+        };
+        let (dm, km) = settings.op;
+        let key = PointKey {
+            model: version,
+            dm: dm.to_bits(),
+            km: km.to_bits(),
+            k: settings.k.to_bits(),
+        };
+        if self.point.as_ref().is_none_or(|p| p.key != key) {
+            self.runs.points += 1;
+            let row = TableRow::from_eval("Operating point", &model.evaluate(dm, km), settings.k);
+            let paths = (0..model.demos().len())
+                .map(|i| model.rollout(i, dm, km))
+                .collect();
+            self.point = Some(PointState { key, row, paths });
+        }
+    }
+
+    pub(super) fn update_rl(&mut self) {
+        let version = self.model_and_version().map(|(_, v)| v);
+        if self.rl.as_ref().is_some_and(|r| Some(r.model) != version) {
+            self.rl = None;
+        }
+        let Some(rl) = &mut self.rl else { return };
+        match rl.job.as_mut().and_then(Job::poll) {
+            Some(Update::Progress(p)) => rl.progress = p,
+            Some(Update::Done(p)) => {
+                rl.progress = p;
+                rl.job = None;
+            }
+            Some(Update::Failed(e)) => {
+                rl.job = None;
+                rl.progress.done = true;
+                self.messages.say(Level::Error, format!("RL: {e}"));
+            }
+            None => {}
+        }
+    }
+
+    pub(super) fn start_rl(&mut self, request: RlRequest) {
+        let Some((model, version)) = self.model_and_version() else {
+            self.messages
+                .say(Level::Warning, "RL needs a model: open demos first");
+            return;
+        };
+        match RlWork::new(model, request.clone()) {
+            Ok(work) => {
+                let progress = RlProgress {
+                    decisions: (0, request.steps),
+                    ..RlProgress::default()
+                };
+                let mut job = self.runner.start("RL training", work);
+                if let Some(n) = job.take_notice() {
+                    self.messages.say(Level::Warning, n);
+                }
+                self.rl = Some(RlState {
+                    model: version,
+                    request,
+                    job: Some(job),
+                    progress,
+                });
+            }
+            Err(e) => self.messages.say(Level::Warning, format!("RL: {e}")),
+        }
+    }
+
+    pub(super) fn model_and_version(&self) -> Option<(Arc<Model>, u64)> {
+        let m = self.model.as_ref()?;
+        m.built
+            .as_ref()
+            .ok()
+            .map(|model| (model.clone(), m.version))
+    }
+}
