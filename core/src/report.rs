@@ -280,14 +280,24 @@ impl Report {
         s
     }
 
+    /// The column titles: `fixed`, then one `d_mean` and one `a_peak`
+    /// column per demo, titled by `per_demo(kind, name)`.
+    fn head(&self, fixed: [&str; 7], per_demo: fn(&str, &str) -> String) -> Vec<String> {
+        let names = self.demo_names();
+        let mut head: Vec<String> = fixed.map(str::to_owned).into();
+        for kind in ["d_mean", "a_peak"] {
+            head.extend(names.iter().map(|d| per_demo(kind, d)));
+        }
+        head
+    }
+
     /// Table I as Markdown.
     pub fn markdown(&self) -> String {
-        let names = self.demo_names();
-        let mut head: Vec<String> = ["gains", "D/M", "K/M", "zeta", "S", "sum d [m]", "J"]
-            .map(str::to_owned)
-            .into();
-        head.extend(names.iter().map(|d| format!("d_mean {d} [mm]")));
-        head.extend(names.iter().map(|d| format!("a_peak {d}")));
+        let fixed = ["gains", "D/M", "K/M", "zeta", "S", "sum d [m]", "J"];
+        let head = self.head(fixed, |kind, d| match kind {
+            "d_mean" => format!("d_mean {d} [mm]"),
+            _ => format!("{kind} {d}"),
+        });
         let mut out = format!("| {} |\n|{}\n", head.join(" | "), "---|".repeat(head.len()));
         for r in &self.table {
             let _ = writeln!(out, "| {} |", r.cells().join(" | "));
@@ -297,12 +307,11 @@ impl Report {
 
     /// Table I as CSV.
     pub fn csv(&self) -> String {
-        let names = self.demo_names();
-        let mut head: Vec<String> = ["gains", "dm", "km", "zeta", "s", "d_sum", "j"]
-            .map(str::to_owned)
-            .into();
-        head.extend(names.iter().map(|d| format!("d_mean_mm:{d}")));
-        head.extend(names.iter().map(|d| format!("a_peak:{d}")));
+        let fixed = ["gains", "dm", "km", "zeta", "s", "d_sum", "j"];
+        let head = self.head(fixed, |kind, d| match kind {
+            "d_mean" => format!("d_mean_mm:{d}"),
+            _ => format!("{kind}:{d}"),
+        });
         let mut out = head.join(",") + "\n";
         for r in &self.table {
             out.push_str(&(r.cells().join(",") + "\n"));

@@ -6,7 +6,7 @@
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::io::LoadOptions;
 use dmpscope_core::landscape::{AxisScale, Grid};
-use dmpscope_core::presets::preset;
+use dmpscope_core::presets::PAPER_PRESETS;
 use dmpscope_core::{DEFAULT_K, PrepSettings};
 use serde::{Deserialize, Serialize};
 
@@ -32,7 +32,9 @@ pub struct Settings {
 
 impl Default for Settings {
     fn default() -> Self {
-        let op = preset("Hrstc1").map_or((25.0, 156.25), |p| (p.dm, p.km));
+        // The paper's Hrstc1, a gain pair inside the default box.
+        let start = PAPER_PRESETS[1];
+        let op = (start.dm, start.km);
         Self {
             load: LoadOptions::default(),
             prep: PrepSettings::default(),
