@@ -7,14 +7,18 @@
 #
 # `web/build.sh --testing` builds with the `testing` feature: the browser
 # tests' hook `window.dmpscope_state()`. The plain build has no test code.
+# `web/build.sh --install-only` installs the tools and stops (CI runs it in
+# the background, at low priority, while the Rust checks run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 features=()
+install_only=false
 for arg in "$@"; do
   case "$arg" in
     --testing) features=(--features testing) ;;
-    *) echo "usage: web/build.sh [--testing]" >&2; exit 2 ;;
+    --install-only) install_only=true ;;
+    *) echo "usage: web/build.sh [--testing | --install-only]" >&2; exit 2 ;;
   esac
 done
 
@@ -28,8 +32,13 @@ fi
 if [ "$(wasm-bindgen --version 2>/dev/null | awk '{print $2}')" != "$version" ]; then
   echo "installing wasm-bindgen-cli $version (a few minutes)" >&2
   # Without --locked: the registry here lacks one of its locked dependencies.
-  cargo install wasm-bindgen-cli --version "$version"
+  if $install_only; then
+    nice -n 15 cargo install wasm-bindgen-cli --version "$version"
+  else
+    cargo install wasm-bindgen-cli --version "$version"
+  fi
 fi
+$install_only && exit 0
 
 cargo build --release -p dmpscope --bin dmpscope --target wasm32-unknown-unknown "${features[@]}"
 out=web/dist
