@@ -125,6 +125,7 @@ fn changing_k_recombines_j_and_moves_the_optimum() {
 #[test]
 fn a_bad_file_is_reported_in_the_window_and_nothing_loaded_is_lost() {
     let mut h = harness();
+    let landscapes = h.state().session().runs().landscapes;
     let bad = support::tmp_path("broken.mcap");
     std::fs::write(&bad, b"\x89MCAP0\r\nthis is not a recording").expect("write");
     add(&mut h, vec![Source::Path(bad)]);
@@ -134,6 +135,11 @@ fn a_bad_file_is_reported_in_the_window_and_nothing_loaded_is_lost() {
         session.model().map(|m| m.demos().len()),
         Some(10),
         "the sample's demos stay"
+    );
+    assert_eq!(
+        session.runs().landscapes,
+        landscapes,
+        "nothing to recompute"
     );
     // The message names the file (get_by_* panics when nothing matches).
     let _message = h.get_by_label_contains("broken.mcap");
@@ -190,6 +196,37 @@ fn a_folder_with_no_usable_demo_says_so_instead_of_a_spinner() {
     assert_eq!(h.state().session().status(), Status::NoDemos);
     let _said = h.get_by_label_contains("No demonstration was found");
     let _why = h.get_by_label_contains("holds no .mcap file");
+}
+
+#[test]
+fn open_without_a_system_dialog_picks_files_in_the_apps_own_browser() {
+    let assets = support::repo().join("assets");
+    let settings = Settings::with_grid_points(16);
+    let sample = support::sample_path();
+    let mut h = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .build_eframe(move |_cc| {
+            DmpApp::with_runner(settings, vec![Source::Path(sample)], Runner::inline())
+                .with_app_browser(Some(assets))
+        });
+    h.run_steps(2);
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "Open…")
+        .click();
+    // The command, the dialog's answer, the browser's first (sizing) frame.
+    h.run_steps(5);
+    let _said = h.get_by_label_contains("dmpscope's own file browser");
+    let _window = h.get_by_label_contains("Open recordings");
+    // The browser starts in the folder given; pick the sample again.
+    h.get_by_label("🗋 reach10.mcap").click();
+    h.run_steps(2);
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "Open")
+        .click();
+    h.run_steps(3);
+    assert!(
+        h.query_by_label_contains("Open recordings").is_none(),
+        "closed"
+    );
+    assert_eq!(h.state().session().demos().len(), 20);
 }
 
 #[test]

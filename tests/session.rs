@@ -59,7 +59,7 @@ fn each_setting_recomputes_exactly_its_stages() {
         "the operating point",
     );
     settings.k = 5.0;
-    check(&mut session, &settings, [0, 0, 0, 0, 1, 1, 1], "k");
+    check(&mut session, &settings, [0, 0, 0, 0, 1, 0, 0], "k");
     settings.set_grid_points(9);
     check(&mut session, &settings, [0, 0, 0, 1, 1, 0, 0], "the grid");
     settings.grid.km.hi = 2000.0;
@@ -112,11 +112,13 @@ fn each_setting_recomputes_exactly_its_stages() {
         [1, 1, 1, 1, 1, 1, 1],
         "the up axis",
     );
+    // The sample has no TF frames: the filter reads the file again, but
+    // the same demos recompute nothing after them.
     settings.load.frames = vec!["hand".into()];
     check(
         &mut session,
         &settings,
-        [1, 1, 1, 1, 1, 1, 1],
+        [1, 1, 0, 0, 0, 0, 0],
         "the frame filter",
     );
     // Whatever set them: a whole new settings value (an imported file, a

@@ -12,13 +12,14 @@ use crate::notice::Notice;
 use crate::prepare::{PrepSettings, prepare};
 
 /// What to do with a demonstration that cannot be prepared (too few samples,
-/// a non-finite value, stamps that ask for too many points).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+/// a non-finite value, stamps that ask for too many points). There is no
+/// default: each front end states its own (the app skips; the CLI fails
+/// unless told `--unusable skip`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Unusable {
     /// Leave it out with a warning naming it and why; fail only when no
     /// demonstration is left.
-    #[default]
     Skip,
     /// Stop at the first one.
     Fail,

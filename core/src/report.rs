@@ -280,42 +280,64 @@ impl Report {
         s
     }
 
-    /// The column titles: `fixed`, then one `d_mean` and one `a_peak`
-    /// column per demo, titled by `per_demo(kind, name)`.
-    fn head(&self, fixed: [&str; 7], per_demo: fn(&str, &str) -> String) -> Vec<String> {
+    /// The column titles: `fixed`, then one `d_mean` column per demo
+    /// titled `d_mean(name)` and one `a_peak` column titled `a_peak(name)`.
+    fn head(
+        &self,
+        fixed: [&str; 7],
+        d_mean: impl Fn(&str) -> String,
+        a_peak: impl Fn(&str) -> String,
+    ) -> Vec<String> {
         let names = self.demo_names();
         let mut head: Vec<String> = fixed.map(str::to_owned).into();
-        for kind in ["d_mean", "a_peak"] {
-            head.extend(names.iter().map(|d| per_demo(kind, d)));
-        }
+        head.extend(names.iter().map(|d| d_mean(d)));
+        head.extend(names.iter().map(|d| a_peak(d)));
         head
     }
 
-    /// Table I as Markdown.
+    /// Table I as Markdown (`|` in names escaped).
     pub fn markdown(&self) -> String {
         let fixed = ["gains", "D/M", "K/M", "zeta", "S", "sum d [m]", "J"];
-        let head = self.head(fixed, |kind, d| match kind {
-            "d_mean" => format!("d_mean {d} [mm]"),
-            _ => format!("{kind} {d}"),
-        });
+        let cell = |t: &str| t.replace('|', "\\|");
+        let head = self.head(
+            fixed,
+            |d| format!("d_mean {} [mm]", cell(d)),
+            |d| format!("a_peak {}", cell(d)),
+        );
         let mut out = format!("| {} |\n|{}\n", head.join(" | "), "---|".repeat(head.len()));
         for r in &self.table {
-            let _ = writeln!(out, "| {} |", r.cells().join(" | "));
+            let cells: Vec<String> = r.cells().iter().map(|c| cell(c)).collect();
+            let _ = writeln!(out, "| {} |", cells.join(" | "));
         }
         out
     }
 
-    /// Table I as CSV.
+    /// Table I as CSV (RFC 4180: a field with a comma, quote or line break
+    /// is quoted).
     pub fn csv(&self) -> String {
         let fixed = ["gains", "dm", "km", "zeta", "s", "d_sum", "j"];
-        let head = self.head(fixed, |kind, d| match kind {
-            "d_mean" => format!("d_mean_mm:{d}"),
-            _ => format!("{kind}:{d}"),
-        });
-        let mut out = head.join(",") + "\n";
+        let head = self.head(
+            fixed,
+            |d| format!("d_mean_mm:{d}"),
+            |d| format!("a_peak:{d}"),
+        );
+        let line = |fields: &[String]| {
+            let quoted: Vec<String> = fields.iter().map(|f| csv_field(f)).collect();
+            quoted.join(",") + "\n"
+        };
+        let mut out = line(&head);
         for r in &self.table {
-            out.push_str(&(r.cells().join(",") + "\n"));
+            out.push_str(&line(&r.cells()));
         }
         out
+    }
+}
+
+/// A CSV field, quoted when it holds a comma, a quote or a line break.
+fn csv_field(f: &str) -> String {
+    if f.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", f.replace('"', "\"\""))
+    } else {
+        f.to_owned()
     }
 }

@@ -26,6 +26,17 @@ pub enum DemosBy {
     Segment,
 }
 
+impl DemosBy {
+    /// The flag's value for a grouping.
+    pub fn of(grouping: &Grouping) -> Self {
+        match grouping {
+            Grouping::PerTopic => Self::Topic,
+            Grouping::PerFile => Self::File,
+            Grouping::Segmented(_) => Self::Segment,
+        }
+    }
+}
+
 /// What to do with a demo that cannot be used.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum UnusableArg {
@@ -49,7 +60,7 @@ pub struct LoadArgs {
     #[arg(long)]
     pub y_up: bool,
     /// What a demonstration is.
-    #[arg(long, value_enum, default_value_t = DemosBy::Topic)]
+    #[arg(long, value_enum, default_value_t = DemosBy::of(&Grouping::default()))]
     pub demos: DemosBy,
     /// Segmentation: speed below which the hand rests, m/s.
     #[arg(long, default_value_t = SegmentSettings::default().rest_speed)]
@@ -135,7 +146,8 @@ pub struct InputArgs {
     #[arg(long, default_value_t = DmpSettings::default().basis_functions)]
     pub basis: usize,
     /// A demo that cannot be used (too few samples, non-finite values):
-    /// stop, or leave it out with a warning.
+    /// stop, or leave it out with a warning. The CLI stops by default (a
+    /// script should not get numbers from fewer demos than it named).
     #[arg(long, value_enum, default_value_t = UnusableArg::Fail)]
     pub unusable: UnusableArg,
 }

@@ -43,7 +43,7 @@ pub struct Args {
     #[arg(long)]
     compare: bool,
     /// Environment decisions to train for (100 per episode).
-    #[arg(long, default_value_t = 100_000)]
+    #[arg(long, default_value_t = dmpscope_core::rl::DEFAULT_DECISIONS)]
     steps: usize,
     /// Seed of the first run.
     #[arg(long, default_value_t = 1)]

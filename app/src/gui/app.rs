@@ -44,9 +44,12 @@ impl DmpApp {
             .unwrap_or_default();
         let ctx = cc.egui_ctx.clone();
         let runner = Runner::background(move || ctx.request_repaint());
+        let last = files.last().cloned();
         let sources = files.into_iter().map(Source::Path).collect();
-        Self::with_runner(settings, sources, runner)
-            .with_render_state(cc.wgpu_render_state.as_ref())
+        let mut app = Self::with_runner(settings, sources, runner)
+            .with_render_state(cc.wgpu_render_state.as_ref());
+        app.dialogs.remember(last);
+        app
     }
 
     /// The app on `sources` (the bundled sample when empty) with explicit
@@ -75,6 +78,13 @@ impl DmpApp {
     /// the view says it needs one).
     pub fn with_render_state(mut self, render_state: Option<&egui_wgpu::RenderState>) -> Self {
         self.view.view3d = super::view3d::View3d::new(render_state);
+        self
+    }
+
+    /// Opens files with the app's own browser only, starting in `start`
+    /// (tests: a system dialog would wait for a person).
+    pub fn with_app_browser(mut self, start: Option<PathBuf>) -> Self {
+        self.dialogs = Dialogs::app_browser_only(start);
         self
     }
 
@@ -109,10 +119,9 @@ impl DmpApp {
 
     /// The file name and bytes of an export.
     fn export(&self, what: Export) -> Result<(&'static str, Vec<u8>), String> {
-        let k = self.settings.k;
         let report = || {
             self.session
-                .report(k)
+                .report()
                 .ok_or_else(|| "nothing to export yet: no model".to_owned())
         };
         Ok(match what {
@@ -162,7 +171,12 @@ impl DmpApp {
         let mut out = Vec::new();
         for answer in answers {
             match answer {
-                Answer::Open(sources) => out.push(session::Command::AddSources(sources).into()),
+                Answer::Open(sources) => {
+                    if let Some(Source::Path(p)) = sources.last() {
+                        self.dialogs.remember(Some(p.clone()));
+                    }
+                    out.push(session::Command::AddSources(sources).into());
+                }
                 Answer::Say(n) => out.push(session::Command::Say(n).into()),
                 Answer::NoOpenDialog { folder } => {
                     out.push(session::Command::Say(no_system_dialog()).into());

@@ -5,9 +5,11 @@
 //! Natively `rfd` needs an xdg-desktop-portal on the session bus or
 //! `zenity`; without either its dialogs return nothing at once. dmpscope
 //! then opens its own file browser (`egui_file`) in the window instead of
-//! doing nothing: when neither is there to begin with, or when the system
-//! dialog answered "nothing" faster than a person could cancel it.
-//! Tests never open a dialog: they give the session sources directly.
+//! doing nothing: when neither is there to begin with, when the system
+//! dialog answered "nothing" faster than a person could cancel it, or when
+//! asked to (`DMPSCOPE_FILE_BROWSER=app`, or [`Dialogs::app_browser_only`]
+//! in tests, which never open a system dialog). The browser starts in the
+//! folder of the last recording opened.
 
 use std::sync::mpsc::{Receiver, Sender, channel};
 
@@ -52,23 +54,62 @@ struct Browser {
 pub struct Dialogs {
     tx: Sender<Answer>,
     rx: Receiver<Answer>,
+    /// Use the app's own browser even where the system has a dialog.
+    app_only: bool,
     #[cfg(not(target_arch = "wasm32"))]
     browser: Option<Browser>,
+    /// Where the app's browser starts.
+    #[cfg(not(target_arch = "wasm32"))]
+    start: Option<std::path::PathBuf>,
 }
 
 impl Default for Dialogs {
     fn default() -> Self {
         let (tx, rx) = channel();
+        let app_only =
+            std::env::var("DMPSCOPE_FILE_BROWSER").is_ok_and(|v| v.eq_ignore_ascii_case("app"));
         Self {
             tx,
             rx,
+            app_only,
             #[cfg(not(target_arch = "wasm32"))]
             browser: None,
+            #[cfg(not(target_arch = "wasm32"))]
+            start: None,
         }
     }
 }
 
 impl Dialogs {
+    /// Dialogs that always use the app's own browser (tests; users set
+    /// `DMPSCOPE_FILE_BROWSER=app`), starting in `start`.
+    pub fn app_browser_only(start: Option<std::path::PathBuf>) -> Self {
+        let mut d = Self {
+            app_only: true,
+            ..Self::default()
+        };
+        d.remember(start);
+        d
+    }
+
+    /// The folder the app's browser starts in next: `path`'s, if any.
+    pub fn remember(&mut self, path: Option<std::path::PathBuf>) {
+        #[cfg(not(target_arch = "wasm32"))]
+        if let Some(p) = path {
+            self.start = if p.is_dir() {
+                Some(p)
+            } else {
+                p.parent().map(ToOwned::to_owned)
+            };
+        }
+        #[cfg(target_arch = "wasm32")]
+        let _ = path;
+    }
+
+    fn system(&self) -> bool {
+        !self.app_only && system_dialogs()
+    }
+
     /// Answers that have arrived since the last call.
     pub fn poll(&self) -> Vec<Answer> {
         self.rx.try_iter().collect()
@@ -77,7 +118,7 @@ impl Dialogs {
     /// Opens the "Open recordings" dialog (a folder when `folder`); `wake`
     /// repaints when it answers.
     pub fn open(&mut self, folder: bool, wake: impl Fn() + Send + 'static) {
-        if !system_dialogs() {
+        if !self.system() {
             let _ = self.tx.send(Answer::NoOpenDialog { folder });
             wake();
             return;
@@ -118,7 +159,7 @@ impl Dialogs {
     /// Asks where to save `bytes` (suggesting `name`) and writes them; in
     /// the browser, downloads them.
     pub fn save(&mut self, name: &str, bytes: Vec<u8>, wake: impl Fn() + Send + 'static) {
-        if !system_dialogs() {
+        if !self.system() {
             let _ = self.tx.send(Answer::NoSaveDialog {
                 name: name.to_owned(),
                 bytes,
@@ -194,6 +235,9 @@ impl Dialogs {
                 .title("Open recordings")
                 .multi_select(true)
         };
+        if let Some(start) = &self.start {
+            dialog = dialog.initial_path(start.clone());
+        }
         dialog.open();
         self.browser = Some(Browser { dialog, save: None });
     }
@@ -203,6 +247,9 @@ impl Dialogs {
         let mut dialog = egui_file::FileDialog::save_file()
             .title("Export")
             .default_filename(name);
+        if let Some(start) = &self.start {
+            dialog = dialog.initial_path(start.clone());
+        }
         dialog.open();
         self.browser = Some(Browser {
             dialog,

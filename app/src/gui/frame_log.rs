@@ -1,7 +1,7 @@
 //! Frame timing for measurements: with `DMPSCOPE_FRAME_LOG=path` the app
 //! records the interval between frames and egui's CPU time per frame and
 //! rewrites a summary (medians, 95th percentiles, maxima) to `path` every
-//! 60 frames.
+//! 10 frames.
 
 use std::path::PathBuf;
 use web_time::Instant;

@@ -24,7 +24,7 @@ impl Default for RlChoices {
     fn default() -> Self {
         Self {
             gains: 1,
-            steps: 100_000,
+            steps: dmpscope_core::rl::DEFAULT_DECISIONS,
             seed: 1,
         }
     }

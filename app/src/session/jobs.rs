@@ -6,8 +6,10 @@
 //! ~10 ms slices on the page's event loop (no threads there), or inline, at
 //! the first [`Job::poll`], to the end (tests, which then need no sleeps).
 //! Whatever runs it, the owner sees the same [`Job`]: `poll` hands over the
-//! latest publication, `cancel` (or dropping the job) stops the work after
-//! its current step and nothing it does afterwards reaches the owner. When a
+//! latest publication, `cancel` (or dropping the job) stops the work at its
+//! next step (in the browser: its next slice) and nothing it does afterwards
+//! reaches the owner; a work of one step (an extraction) runs to its end
+//! unseen, so its owner starts at most one at a time. When a
 //! thread cannot be started the work runs in slices at each poll instead,
 //! and [`Job::take_notice`] says so once.
 
@@ -107,11 +109,6 @@ impl Runner {
         }
     }
 
-    /// The mode.
-    pub fn mode(&self) -> Mode {
-        self.mode
-    }
-
     /// Whether jobs get a thread of their own (so a work may use all cores
     /// in one step and take longer per step).
     pub fn threaded(&self) -> bool {
@@ -165,11 +162,13 @@ impl Runner {
 }
 
 /// What a thread shares with its job.
+#[cfg(not(target_arch = "wasm32"))]
 struct Shared<T> {
     slot: Mutex<Slot<T>>,
     cancel: std::sync::atomic::AtomicBool,
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 impl<T> Default for Shared<T> {
     fn default() -> Self {
         Self {
@@ -182,6 +181,7 @@ impl<T> Default for Shared<T> {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 struct Slot<T> {
     latest: Option<T>,
     done: bool,
@@ -341,6 +341,10 @@ impl<T: Send + 'static> Job<T> {
         let (update, over) = match &mut self.state {
             #[cfg(not(target_arch = "wasm32"))]
             State::Thread { shared, handle } => {
+                // Whether the thread had ended is read before the slot: a
+                // thread writes its result before it ends, so a result is
+                // never mistaken for a death.
+                let ended = handle.is_finished();
                 let taken = shared
                     .slot
                     .lock()
@@ -349,7 +353,7 @@ impl<T: Send + 'static> Job<T> {
                 match taken {
                     Some((v, true)) => (Some(Update::Done(v)), true),
                     Some((v, false)) => (Some(Update::Progress(v)), false),
-                    None if handle.is_finished() => (
+                    None if ended => (
                         Some(Update::Failed("the work stopped unexpectedly".into())),
                         true,
                     ),

@@ -13,8 +13,9 @@
 //! + grouping                                  -> its demos
 //! demos + included + preprocessing + DMP      -> the model
 //! model + grid                                -> the landscape (a job)
-//! landscape + k                               -> the extraction (a job), Table I
-//! model + operating point + k                 -> the operating point's row and paths
+//! landscape + k                               -> the extraction (a job, one at a time)
+//! model + k                                   -> the paper's rows of Table I
+//! model + operating point (+ k for its J)     -> the operating point's paths (and row)
 //! model                                       -> the RL run stays or goes
 //! ```
 //!
@@ -38,7 +39,7 @@ use std::sync::Arc;
 use dmpscope_core::{DemoInfo, Extraction, Model, Notice, RawDemo, Report, Rollout, TableRow};
 
 pub use commands::Command;
-pub use jobs::{Mode, PageTime, Runner};
+pub use jobs::{PageTime, Runner};
 pub use landscape::{Shown, Snapshot};
 pub use rl::{Progress as RlProgress, RlRequest};
 pub use settings::Settings;
@@ -47,11 +48,13 @@ pub use status::Status;
 
 use messages::Messages;
 use sources::SourceSlot;
-use stages::{ExtractionState, LandscapeState, ModelState, PointState, RlState, TableKey};
+use stages::{ExtractionState, LandscapeState, ModelState, PointState, PresetState, RlState};
 
 /// A demo in the demos list.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct DemoEntry {
+    /// The source it came from (an index into `Session::sources`).
+    pub source: usize,
     /// The demo as loaded and grouped.
     pub raw: RawDemo,
     /// Its summary, computed once.
@@ -73,9 +76,11 @@ pub struct StageRuns {
     pub landscapes: usize,
     /// Extractions started.
     pub extractions: usize,
-    /// Preset tables computed.
+    /// The paper's gains evaluated (once per model: their rows follow
+    /// any k).
     pub tables: usize,
-    /// Operating points evaluated (row and paths).
+    /// Operating points evaluated, with every demo's path (once per model
+    /// and point).
     pub points: usize,
 }
 
@@ -85,13 +90,16 @@ pub struct Session {
     slots: Vec<SourceSlot>,
     demos: Vec<DemoEntry>,
     demos_version: u64,
-    /// Names of the demos the user excluded (kept across reloads).
-    excluded: BTreeSet<String>,
+    /// The demos the user excluded, by source and name (kept across
+    /// reloads and regroupings).
+    excluded: BTreeSet<(usize, String)>,
     messages: Messages,
     model: Option<ModelState>,
     landscape: Option<LandscapeState>,
     extraction: Option<ExtractionState>,
-    presets: Option<(TableKey, Vec<TableRow>)>,
+    presets: Option<PresetState>,
+    /// The k of the last update (Table I's rows are made for it).
+    k: f64,
     point: Option<PointState>,
     rl: Option<RlState>,
     runs: StageRuns,
@@ -112,6 +120,7 @@ impl Session {
             landscape: None,
             extraction: None,
             presets: None,
+            k: dmpscope_core::DEFAULT_K,
             point: None,
             rl: None,
             runs: StageRuns::default(),
@@ -134,10 +143,11 @@ impl Session {
             Command::SetIncluded { demo, included } => {
                 if let Some(d) = self.demos.get_mut(demo) {
                     d.included = included;
+                    let key = (d.source, d.raw.name.clone());
                     if included {
-                        self.excluded.remove(&d.raw.name);
+                        self.excluded.remove(&key);
                     } else {
-                        self.excluded.insert(d.raw.name.clone());
+                        self.excluded.insert(key);
                     }
                 }
             }
@@ -169,11 +179,12 @@ impl Session {
     /// compares keys and decides what to recompute. Cheap when nothing
     /// changed.
     pub fn update(&mut self, settings: &Settings) {
+        self.k = settings.k;
         self.update_sources(settings);
         self.update_model(settings);
         self.update_landscape(settings);
         self.update_extraction(settings);
-        self.update_tables(settings);
+        self.update_presets();
         self.update_point(settings);
         self.update_rl();
     }
@@ -238,31 +249,45 @@ impl Session {
         self.extraction.as_ref().is_some_and(|x| x.job.is_some())
     }
 
-    /// Table I: extracted (when known), the paper's gains, the operating
-    /// point.
+    /// Table I for the k of the last update: extracted (when known), the
+    /// paper's gains, the operating point.
     pub fn table_rows(&self) -> Vec<TableRow> {
+        let k = self.k;
         let mut rows: Vec<TableRow> = self
             .extraction()
             .map(|x| TableRow::from_eval("Extracted", &x.eval, x.k))
             .into_iter()
             .collect();
-        if let Some((_, presets)) = &self.presets {
-            rows.extend(presets.iter().cloned());
+        if let Some(p) = &self.presets {
+            rows.extend(
+                p.evals
+                    .iter()
+                    .map(|(n, e)| TableRow::from_eval(n.clone(), e, k)),
+            );
         }
-        rows.extend(self.point.as_ref().map(|p| p.row.clone()));
+        rows.extend(
+            self.point
+                .as_ref()
+                .map(|p| TableRow::from_eval("Operating point", &p.eval, k)),
+        );
         rows
     }
 
     /// The report of the current model, extraction and Table I (the app's
-    /// JSON, CSV and Markdown exports).
-    pub fn report(&self, k: f64) -> Option<Report> {
+    /// JSON, CSV and Markdown exports), for the k of the last update.
+    pub fn report(&self) -> Option<Report> {
         let model = self.model()?;
         Some(Report::with_rows(
             model,
             self.extraction(),
-            k,
+            self.k,
             self.table_rows(),
         ))
+    }
+
+    /// Why the extraction failed, if it did.
+    pub fn extraction_error(&self) -> Option<&str> {
+        self.extraction.as_ref().and_then(|x| x.error.as_deref())
     }
 
     /// Every model demo regenerated at the operating point.
@@ -304,6 +329,10 @@ impl Session {
 
     fn landscape_cancelled(&self) -> bool {
         self.landscape.as_ref().is_some_and(|l| l.cancelled)
+    }
+
+    fn landscape_failed(&self) -> bool {
+        self.landscape.as_ref().is_some_and(|l| l.failed)
     }
 
     fn model_error(&self) -> Option<&str> {

@@ -77,6 +77,13 @@ impl RlWork {
     }
 }
 
+impl RlWork {
+    /// How far training is (nothing trained yet, before the first step).
+    pub fn progress(&self) -> &Progress {
+        &self.progress
+    }
+}
+
 impl Work for RlWork {
     type Output = Progress;
 

@@ -105,7 +105,7 @@ pub struct SourceSlot {
 pub struct SlotNews {
     /// Loads started.
     pub loads_started: usize,
-    /// Whether its demos changed.
+    /// Whether its demos may have changed (they were regrouped).
     pub demos_changed: bool,
     /// Whether its demos were regrouped.
     pub regrouped: bool,
@@ -138,15 +138,6 @@ impl SourceSlot {
         }
     }
 
-    /// Why the slot gives no demos, when it failed.
-    pub fn error(&self) -> Option<&str> {
-        match (&self.streams, &self.grouped) {
-            (Some(Streams { result: Err(e), .. }), _) => Some(e),
-            (_, Some((_, Err(e)))) => Some(e),
-            _ => None,
-        }
-    }
-
     /// Brings the slot to `options`: starts a load when the stream options
     /// changed (cancelling one under way for other options), takes a finished
     /// load, and regroups when the streams or the grouping changed.
@@ -155,6 +146,11 @@ impl SourceSlot {
         let key = StreamKey::of(options);
         let current = self.streams.as_ref().is_some_and(|s| s.key == key);
         let pending_for_key = self.pending.as_ref().is_some_and(|(k, _)| *k == key);
+        if current && self.pending.is_some() {
+            // Back to the options the streams were read with: a load for
+            // other options is stale (dropping it cancels it).
+            self.pending = None;
+        }
         if !current && !pending_for_key {
             let (source, load_options) = (self.source.clone(), key.options());
             let work = Once::new(move || source.load(&load_options));

@@ -7,14 +7,15 @@ use std::sync::Arc;
 
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::landscape::Grid;
+use dmpscope_core::presets::PAPER_PRESETS;
 use dmpscope_core::{
-    Extraction, Level, Model, PrepSettings, Rollout, TableRow, Unusable, build_model, extract,
+    Extraction, Level, Model, PointEval, PrepSettings, Rollout, Unusable, build_model, extract,
 };
 
 use super::jobs::{Job, Once, Update};
 use super::landscape::{LandscapeWork, Shown, Snapshot};
 use super::rl::{Progress as RlProgress, RlRequest, RlWork};
-use super::{DemoEntry, PageTime, Session, Settings, SourceSlot};
+use super::{DemoEntry, PageTime, Session, Settings};
 
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct ModelKey {
@@ -37,18 +38,12 @@ pub(super) struct ExtractionKey {
     pub(super) k: u64,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct TableKey {
-    pub(super) model: u64,
-    pub(super) k: u64,
-}
-
+/// The operating point: `f64`s compared by their bits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct PointKey {
     pub(super) model: u64,
     pub(super) dm: u64,
     pub(super) km: u64,
-    pub(super) k: u64,
 }
 
 pub(super) struct ModelState {
@@ -65,18 +60,28 @@ pub(super) struct LandscapeState {
     pub(super) job: Option<Job<Snapshot>>,
     pub(super) shown: Option<Shown>,
     pub(super) cancelled: bool,
+    /// The job stopped without finishing (its thread died).
+    pub(super) failed: bool,
     pub(super) page_time: PageTime,
 }
 
 pub(super) struct ExtractionState {
+    /// What the job (or its result) is for.
     pub(super) key: ExtractionKey,
     pub(super) job: Option<Job<dmpscope_core::Result<Extraction>>>,
     pub(super) result: Option<Extraction>,
+    pub(super) error: Option<String>,
+}
+
+/// The paper's gains evaluated on a model (their rows follow for any k).
+pub(super) struct PresetState {
+    pub(super) model: u64,
+    pub(super) evals: Vec<(String, PointEval)>,
 }
 
 pub(super) struct PointState {
     pub(super) key: PointKey,
-    pub(super) row: TableRow,
+    pub(super) eval: PointEval,
     pub(super) paths: Vec<Rollout>,
 }
 
@@ -98,18 +103,25 @@ impl Session {
             self.messages.extend(news.notices);
         }
         if changed {
+            let excluded = &self.excluded;
             let demos: Vec<DemoEntry> = self
                 .slots
                 .iter()
-                .flat_map(SourceSlot::demos)
-                .map(|raw| DemoEntry {
+                .enumerate()
+                .flat_map(|(source, slot)| slot.demos().iter().map(move |raw| (source, raw)))
+                .map(|(source, raw)| DemoEntry {
+                    source,
                     info: raw.info(),
-                    included: !self.excluded.contains(&raw.name),
+                    included: !excluded.contains(&(source, raw.name.clone())),
                     raw: raw.clone(),
                 })
                 .collect();
-            self.demos = demos;
-            self.demos_version = self.next_id();
+            // A regrouping that gives the same demos (a file that failed to
+            // load, a grouping that changes nothing) recomputes nothing.
+            if demos != self.demos {
+                self.demos = demos;
+                self.demos_version = self.next_id();
+            }
         }
     }
 
@@ -188,6 +200,7 @@ impl Session {
                 job,
                 shown: None,
                 cancelled: false,
+                failed: false,
                 page_time: PageTime::default(),
             });
         }
@@ -204,6 +217,7 @@ impl Session {
             }
             Some(Update::Failed(e)) => {
                 l.job = None;
+                l.failed = true;
                 self.messages
                     .say(Level::Error, format!("the landscape: {e}"));
                 None
@@ -234,6 +248,21 @@ impl Session {
             landscape: id,
             k: settings.k.to_bits(),
         };
+        if let Some(x) = &mut self.extraction
+            && x.key != key
+        {
+            // A one-step work cannot be stopped: while the extraction for
+            // another k runs, wait for it (its answer is dropped) rather than
+            // pile up threads as k is dragged.
+            x.result = None;
+            x.error = None;
+            if let Some(job) = &mut x.job {
+                match job.poll() {
+                    None | Some(Update::Progress(_)) => return,
+                    Some(_) => x.job = None,
+                }
+            }
+        }
         if self.extraction.as_ref().is_none_or(|x| x.key != key) {
             self.runs.extractions += 1;
             let (landscape, k) = (shown.snapshot.landscape.clone(), settings.k);
@@ -242,45 +271,51 @@ impl Session {
                 key,
                 job: Some(self.runner.start("the extraction", work)),
                 result: None,
+                error: None,
             });
         }
         let Some(x) = &mut self.extraction else {
             return;
         };
-        match x.job.as_mut().and_then(Job::poll) {
+        let failed = match x.job.as_mut().and_then(Job::poll) {
             Some(Update::Done(Ok(found))) => {
-                x.job = None;
                 x.result = Some(found);
+                None
             }
-            Some(Update::Done(Err(e))) => {
-                x.job = None;
-                self.messages
-                    .say(Level::Warning, format!("extraction: {e}"));
-            }
-            Some(Update::Failed(e)) => {
-                x.job = None;
-                self.messages.say(Level::Error, format!("extraction: {e}"));
-            }
-            Some(Update::Progress(_)) | None => {}
+            Some(Update::Done(Err(e))) => Some(e.to_string()),
+            Some(Update::Failed(e)) => Some(e),
+            Some(Update::Progress(_)) | None => return,
+        };
+        x.job = None;
+        if let Some(e) = failed {
+            self.messages
+                .say(Level::Warning, format!("extraction: {e}"));
+            x.error = Some(e);
         }
     }
 
-    pub(super) fn update_tables(&mut self, settings: &Settings) {
+    /// The paper's gains on the model: evaluated once per model, their
+    /// rows made for the current k when asked ([`Session::table_rows`]).
+    pub(super) fn update_presets(&mut self) {
         let Some((model, version)) = self.model_and_version() else {
             self.presets = None;
             return;
         };
-        let key = TableKey {
-            model: version,
-            k: settings.k.to_bits(),
-        };
-        if self.presets.as_ref().is_none_or(|(k, _)| *k != key) {
+        if self.presets.as_ref().is_none_or(|p| p.model != version) {
             self.runs.tables += 1;
-            let rows = dmpscope_core::presets::preset_rows(&model, settings.k);
-            self.presets = Some((key, rows));
+            let evals = PAPER_PRESETS
+                .iter()
+                .map(|p| (p.name.to_owned(), model.evaluate(p.dm, p.km)))
+                .collect();
+            self.presets = Some(PresetState {
+                model: version,
+                evals,
+            });
         }
     }
 
+    /// The operating point: its evaluation and every demo's path, once per
+    /// model and point (its row follows for any k).
     pub(super) fn update_point(&mut self, settings: &Settings) {
         let Some((model, version)) = self.model_and_version() else {
             self.point = None;
@@ -291,15 +326,14 @@ impl Session {
             model: version,
             dm: dm.to_bits(),
             km: km.to_bits(),
-            k: settings.k.to_bits(),
         };
         if self.point.as_ref().is_none_or(|p| p.key != key) {
             self.runs.points += 1;
-            let row = TableRow::from_eval("Operating point", &model.evaluate(dm, km), settings.k);
+            let eval = model.evaluate(dm, km);
             let paths = (0..model.demos().len())
                 .map(|i| model.rollout(i, dm, km))
                 .collect();
-            self.point = Some(PointState { key, row, paths });
+            self.point = Some(PointState { key, eval, paths });
         }
     }
 
@@ -332,10 +366,7 @@ impl Session {
         };
         match RlWork::new(model, request.clone()) {
             Ok(work) => {
-                let progress = RlProgress {
-                    decisions: (0, request.steps),
-                    ..RlProgress::default()
-                };
+                let progress = work.progress().clone();
                 let mut job = self.runner.start("RL training", work);
                 if let Some(n) = job.take_notice() {
                     self.messages.say(Level::Warning, n);

@@ -22,6 +22,8 @@ pub enum Status {
     Computing(usize, usize),
     /// The landscape was cancelled at this many points of all.
     Cancelled(usize, usize),
+    /// The landscape's work stopped before the end (the messages say why).
+    Stopped(usize, usize),
     /// The landscape is complete.
     Ready,
 }
@@ -53,6 +55,10 @@ impl Status {
             Self::Cancelled(done, total) => {
                 format!("The landscape was cancelled at {done}/{total} points.")
             }
+            Self::Stopped(done, total) => format!(
+                "The landscape stopped at {done}/{total} points (see the messages); Restart \
+                 computes it again."
+            ),
             Self::Ready => "The landscape is complete.".into(),
         }
     }
@@ -73,19 +79,21 @@ pub(super) fn of(session: &Session) -> Status {
     if let Some(why) = session.model_error() {
         return Status::NoUsableDemo(why.to_owned());
     }
-    let Some(shown) = session.shown() else {
-        return if session.landscape_running() || session.model().is_none() {
-            Status::Computing(0, 0)
-        } else {
-            Status::NoLandscape
-        };
-    };
-    let (done, total) = (shown.snapshot.done, shown.snapshot.total);
-    if done == total {
+    let (done, total) = session
+        .shown()
+        .map_or((0, 0), |s| (s.snapshot.done, s.snapshot.total));
+    if session.landscape_running() {
+        Status::Computing(done, total)
+    } else if total > 0 && done == total {
         Status::Ready
     } else if session.landscape_cancelled() {
         Status::Cancelled(done, total)
+    } else if session.landscape_failed() {
+        Status::Stopped(done, total)
+    } else if session.model().is_none() {
+        // Not built yet: the first update has not run.
+        Status::Computing(0, 0)
     } else {
-        Status::Computing(done, total)
+        Status::NoLandscape
     }
 }

@@ -8,7 +8,7 @@ pub mod mlp;
 pub mod ppo;
 
 pub use env::DmpEnv;
-pub use ppo::{GreedyRun, IterStats, PpoConfig, Trainer};
+pub use ppo::{DEFAULT_DECISIONS, GreedyRun, IterStats, PpoConfig, Trainer};
 
 /// Within this distance of the goal an episode "reached" it (issue 6).
 pub const REACHED_M: f64 = 0.005;

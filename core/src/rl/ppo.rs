@@ -46,6 +46,10 @@ impl Default for PpoConfig {
     }
 }
 
+/// Decisions a training run takes unless told otherwise (the CLI's
+/// `--steps`, the app's RL panel).
+pub const DEFAULT_DECISIONS: usize = 100_000;
+
 /// Hidden layer sizes of the actor and the critic.
 pub const HIDDEN: [usize; 2] = [64, 64];
 

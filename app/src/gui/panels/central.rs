@@ -41,9 +41,10 @@ fn status(ui: &mut egui::Ui, status: &Status, height: f32) {
                 ui.spinner();
             }
             let colour = match status {
-                Status::NoDemos | Status::NoUsableDemo(_) | Status::NoLandscape => {
-                    Color32::from_rgb(240, 180, 80)
-                }
+                Status::NoDemos
+                | Status::NoUsableDemo(_)
+                | Status::NoLandscape
+                | Status::Stopped(..) => Color32::from_rgb(240, 180, 80),
                 _ => ui.visuals().text_color(),
             };
             ui.colored_label(colour, status.describe());

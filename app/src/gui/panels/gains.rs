@@ -52,6 +52,11 @@ pub fn gains_ui(ui: &mut egui::Ui, session: &Session, s: &mut Settings) {
             });
         } else if session.model().is_none() {
             ui.weak("Extracted: needs demonstrations");
+        } else if let Some(e) = session.extraction_error() {
+            ui.colored_label(
+                Color32::from_rgb(240, 120, 100),
+                format!("Extraction failed: {e}"),
+            );
         } else {
             ui.label("Extracted: waiting for the full landscape");
         }

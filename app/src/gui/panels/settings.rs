@@ -8,6 +8,7 @@ use crate::session::Settings;
 
 /// The Settings section.
 pub fn settings_ui(ui: &mut egui::Ui, s: &mut Settings) {
+    let window_before = s.prep.sg_window;
     egui::Grid::new("settings").show(ui, |ui| {
         let l = ui.label("grid points");
         let mut n = s.grid_points();
@@ -59,8 +60,10 @@ pub fn settings_ui(ui: &mut egui::Ui, s: &mut Settings) {
             .labelled_by(l.id);
         ui.end_row();
     });
-    if s.prep.sg_window.is_multiple_of(2) {
-        s.prep.sg_window += 1;
+    // The window is odd: an even value moves on the way it was going.
+    let w = &mut s.prep.sg_window;
+    if w.is_multiple_of(2) {
+        *w = if *w < window_before { *w - 1 } else { *w + 1 };
     }
     if ui.button("Reset to the paper's settings").clicked() {
         let keep = (s.load.clone(), s.op, s.log_colour);

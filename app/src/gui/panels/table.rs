@@ -14,10 +14,10 @@ use crate::session::{Session, Settings};
 pub fn table_ui(
     ui: &mut egui::Ui,
     session: &Session,
-    s: &mut Settings,
+    _s: &mut Settings,
     _view: &mut ViewState,
 ) -> Vec<Command> {
-    let Some(report) = session.report(s.k) else {
+    let Some(report) = session.report() else {
         return Vec::new();
     };
     ui.horizontal(|ui| {

@@ -57,8 +57,13 @@ pub fn top_bar_ui(
                     out.push(session::Command::CancelLandscape.into());
                 }
             }
-            Status::Cancelled(done, total) => {
-                ui.label(format!("landscape cancelled at {done}/{total}"));
+            Status::Cancelled(done, total) | Status::Stopped(done, total) => {
+                let what = if matches!(session.status(), Status::Cancelled(..)) {
+                    "cancelled"
+                } else {
+                    "stopped"
+                };
+                ui.label(format!("landscape {what} at {done}/{total}"));
                 if ui.button("Restart").clicked() {
                     out.push(session::Command::RestartLandscape.into());
                 }
