@@ -13,7 +13,9 @@
 //! thread cannot be started the work runs in slices at each poll instead,
 //! and [`Job::take_notice`] says so once.
 
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
+#[cfg(not(target_arch = "wasm32"))]
+use std::sync::Mutex;
 
 use web_time::{Duration, Instant};
 
