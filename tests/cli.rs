@@ -6,7 +6,7 @@ mod support;
 use std::path::PathBuf;
 
 use serde_json::Value;
-use support::{dmpscope, repo, text, tmp_path as tmp};
+use support::{dmpscope, repo, sorted_keys, text, tmp_path as tmp};
 
 fn sample() -> PathBuf {
     support::sample_path()
@@ -58,16 +58,8 @@ fn info_lists_the_ten_sample_demos() {
 #[test]
 fn landscape_json_has_exactly_the_documented_shape() {
     let doc = landscape_json(&[]);
-    let keys: Vec<&str> = doc
-        .as_object()
-        .expect("object")
-        .keys()
-        .map(String::as_str)
-        .collect();
-    let mut sorted = keys.clone();
-    sorted.sort_unstable();
     assert_eq!(
-        sorted,
+        sorted_keys(&doc),
         [
             "d_sum", "demos", "dm", "j", "k", "km", "optimum", "s", "table"
         ]
@@ -93,15 +85,8 @@ fn landscape_json_has_exactly_the_documented_shape() {
         }
     }
     let opt = &doc["optimum"];
-    let mut opt_keys: Vec<&str> = opt
-        .as_object()
-        .expect("optimum")
-        .keys()
-        .map(String::as_str)
-        .collect();
-    opt_keys.sort_unstable();
     assert_eq!(
-        opt_keys,
+        sorted_keys(opt),
         [
             "converged",
             "d_sum",
@@ -149,13 +134,7 @@ fn extract_json_is_the_same_report_as_landscape_json() {
     ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report: Value = serde_json::from_slice(&out.stdout).expect("json");
-    let mut keys: Vec<&str> = report
-        .as_object()
-        .expect("object")
-        .keys()
-        .map(String::as_str)
-        .collect();
-    keys.sort_unstable();
+    let keys = sorted_keys(&report);
     assert_eq!(keys, ["demos", "k", "optimum", "table"]);
     for key in keys {
         assert_eq!(report[key], doc[key], "{key}");

@@ -23,6 +23,16 @@ pub fn dmpscope(args: &[&str]) -> Output {
         .expect("run dmpscope")
 }
 
+/// The keys of a JSON object, sorted (empty for anything else).
+pub fn sorted_keys(value: &serde_json::Value) -> Vec<&str> {
+    let mut keys: Vec<&str> = value
+        .as_object()
+        .map(|o| o.keys().map(String::as_str).collect())
+        .unwrap_or_default();
+    keys.sort_unstable();
+    keys
+}
+
 /// Bytes as text, lossily.
 pub fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
