@@ -78,16 +78,47 @@ impl Extraction {
     }
 }
 
-/// Extracts the gains minimising `J = S + k sum d` from a complete landscape.
-pub fn extract(model: &Model, landscape: &Landscape, k: f64) -> Result<Extraction> {
-    if !k.is_finite() || k < 0.0 {
-        return Err(Error::InvalidSetting(format!(
-            "k must be finite and >= 0, got {k}"
-        )));
-    }
-    let (i_dm, i_km, grid_min_j) = landscape
-        .argmin(k)
-        .ok_or_else(|| Error::InvalidSetting("the landscape has no computed point".into()))?;
+/// A grid minimum refined by Nelder-Mead (method.md section 6), of any
+/// quantity: J for the extraction, S for the S minimum, J under an a_peak
+/// limit for the constrained optimum.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Refined {
+    /// D/M.
+    pub dm: f64,
+    /// K/M.
+    pub km: f64,
+    /// The quantity there.
+    pub value: f64,
+    /// The grid point the refinement started from, `(i_dm, i_km)`.
+    pub grid_min: (usize, usize),
+    /// The quantity at that grid point.
+    pub grid_min_value: f64,
+    /// The box sides the result lies on.
+    pub edges: Edges,
+    /// Nelder-Mead iterations.
+    pub iterations: usize,
+    /// Whether the simplex shrank below the span tolerance.
+    pub converged: bool,
+}
+
+/// Refines the least of `values` (one per grid point of `landscape`, NaN and
+/// infinity never chosen) by Nelder-Mead on `cost(dm, km)` in the axes'
+/// even coordinates, every vertex clipped into the box; the grid point stays
+/// the answer when the refinement finds nothing better. `None` when no
+/// value is finite.
+pub fn refine(
+    landscape: &Landscape,
+    values: &[f64],
+    mut cost: impl FnMut(f64, f64) -> f64,
+) -> Option<Refined> {
+    let n_km = landscape.grid.km.n;
+    let (best, grid_min_value) = values
+        .iter()
+        .copied()
+        .enumerate()
+        .filter(|(_, v)| v.is_finite())
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    let (i_dm, i_km) = (best / n_km, best % n_km);
     let (ax_dm, ax_km) = (landscape.grid.dm, landscape.grid.km);
     let lo = [ax_dm.to_coord(ax_dm.lo), ax_km.to_coord(ax_km.lo)];
     let hi = [ax_dm.to_coord(ax_dm.hi), ax_km.to_coord(ax_km.hi)];
@@ -112,7 +143,7 @@ pub fn extract(model: &Model, landscape: &Landscape, k: f64) -> Result<Extractio
     let found = nelder_mead::minimise(
         |p| {
             let (dm, km) = to_gains(p);
-            model.evaluate(dm, km).j(k)
+            cost(dm, km)
         },
         clip,
         start,
@@ -123,11 +154,12 @@ pub fn extract(model: &Model, landscape: &Landscape, k: f64) -> Result<Extractio
     // ulp: clamp the gains themselves. The grid point stays the answer when
     // the refinement found nothing better.
     let clamp = |(dm, km): (f64, f64)| (dm.clamp(ax_dm.lo, ax_dm.hi), km.clamp(ax_km.lo, ax_km.hi));
-    let (dm, km) = clamp(to_gains(found.x));
-    let mut eval = model.evaluate(dm, km);
+    let (mut dm, mut km) = clamp(to_gains(found.x));
+    let mut value = cost(dm, km);
     let mut x = found.x;
-    if eval.j(k).is_nan() || eval.j(k) > grid_min_j {
-        eval = model.evaluate(landscape.dm[i_dm], landscape.km[i_km]);
+    if value.is_nan() || value > grid_min_value {
+        (dm, km) = (landscape.dm[i_dm], landscape.km[i_km]);
+        value = cost(dm, km);
         x = x0;
     }
     let edges = Edges {
@@ -136,14 +168,36 @@ pub fn extract(model: &Model, landscape: &Landscape, k: f64) -> Result<Extractio
         km_low: x[1] - lo[1] < EDGE_TOLERANCE,
         km_high: hi[1] - x[1] < EDGE_TOLERANCE,
     };
+    Some(Refined {
+        dm,
+        km,
+        value,
+        grid_min: (i_dm, i_km),
+        grid_min_value,
+        edges,
+        iterations: found.iterations,
+        converged: found.converged,
+    })
+}
+
+/// Extracts the gains minimising `J = S + k sum d` from a complete landscape.
+pub fn extract(model: &Model, landscape: &Landscape, k: f64) -> Result<Extraction> {
+    if !k.is_finite() || k < 0.0 {
+        return Err(Error::InvalidSetting(format!(
+            "k must be finite and >= 0, got {k}"
+        )));
+    }
+    let r = refine(landscape, &landscape.j(k), |dm, km| model.j(dm, km, k))
+        .ok_or_else(|| Error::InvalidSetting("the landscape has no computed point".into()))?;
+    let eval = model.evaluate(r.dm, r.km);
     Ok(Extraction {
         j: eval.j(k),
         eval,
         k,
-        grid_min: (i_dm, i_km),
-        grid_min_j,
-        edges,
-        iterations: found.iterations,
-        converged: found.converged,
+        grid_min: r.grid_min,
+        grid_min_j: r.grid_min_value,
+        edges: r.edges,
+        iterations: r.iterations,
+        converged: r.converged,
     })
 }

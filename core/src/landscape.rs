@@ -166,6 +166,9 @@ pub struct Landscape {
     pub d_sum: Vec<f64>,
     /// `S` per grid point (NaN where not computed yet).
     pub s: Vec<f64>,
+    /// The largest `a_peak` of any demo per grid point (NaN where not
+    /// computed yet), m/s^2 of the unit-time motion.
+    pub a_peak: Vec<f64>,
     /// How many points are computed.
     pub filled: usize,
 }
@@ -179,6 +182,7 @@ impl Landscape {
             km: grid.km.values(),
             d_sum: vec![f64::NAN; len],
             s: vec![f64::NAN; len],
+            a_peak: vec![f64::NAN; len],
             filled: 0,
         }
     }
@@ -345,9 +349,9 @@ impl LandscapeJob {
     }
 }
 
-/// `(sum d, S)` of a tile of points, spread over all cores.
+/// `[sum d, S, max a_peak]` of a tile of points, spread over all cores.
 #[cfg(feature = "parallel")]
-fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<(f64, f64)> {
+fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<[f64; 3]> {
     use rayon::prelude::*;
     row_runs(batch)
         .par_iter()
@@ -355,9 +359,9 @@ fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<
         .collect()
 }
 
-/// `(sum d, S)` of a tile of points on this thread.
+/// `[sum d, S, max a_peak]` of a tile of points on this thread.
 #[cfg(not(feature = "parallel"))]
-fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<(f64, f64)> {
+fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<[f64; 3]> {
     eval_points(model, landscape, batch)
 }
 
@@ -374,8 +378,9 @@ fn row_runs(points: &[(u32, u32)]) -> Vec<&[(u32, u32)]> {
     runs
 }
 
-/// `(sum d, S)` of each point, in lanes of points that share a row.
-fn eval_points(model: &Model, landscape: &Landscape, points: &[(u32, u32)]) -> Vec<(f64, f64)> {
+/// `[sum d, S, max a_peak]` of each point, in lanes of points that share a
+/// row.
+fn eval_points(model: &Model, landscape: &Landscape, points: &[(u32, u32)]) -> Vec<[f64; 3]> {
     let mut out = Vec::with_capacity(points.len());
     for run in row_runs(points) {
         let dm = landscape.dm[run[0].0 as usize];
@@ -389,11 +394,12 @@ fn eval_points(model: &Model, landscape: &Landscape, points: &[(u32, u32)]) -> V
     out
 }
 
-fn store(landscape: &mut Landscape, points: &[(u32, u32)], values: &[(f64, f64)]) {
-    for (&(i, j), &(d, s)) in points.iter().zip(values) {
+fn store(landscape: &mut Landscape, points: &[(u32, u32)], values: &[[f64; 3]]) {
+    for (&(i, j), &[d, s, a]) in points.iter().zip(values) {
         let idx = landscape.index(i as usize, j as usize);
         landscape.d_sum[idx] = d;
         landscape.s[idx] = s;
+        landscape.a_peak[idx] = a;
     }
     landscape.filled += points.len();
 }

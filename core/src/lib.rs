@@ -24,6 +24,7 @@
 //! rayon is used only behind the `parallel` feature.
 
 pub mod demo;
+pub mod diagnostics;
 pub mod dmp;
 pub mod error;
 pub mod extract;
@@ -34,6 +35,7 @@ pub mod model;
 pub mod nelder_mead;
 pub mod notice;
 pub mod pipeline;
+pub mod planted;
 pub mod prepare;
 pub mod presets;
 pub mod report;

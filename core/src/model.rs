@@ -197,18 +197,70 @@ impl Model {
         }
     }
 
-    /// `(sum d, S)` at the gain pairs `(dm, km[l])`; the landscape's unit of
-    /// work. Each lane's numbers equal [`Model::evaluate`]'s to the bit.
-    pub fn evaluate_lanes<const L: usize>(&self, dm: f64, km: [f64; L]) -> [(f64, f64); L] {
+    /// `[sum d, S, max a_peak]` at the gain pairs `(dm, km[l])`; the
+    /// landscape's unit of work. Each lane's numbers equal
+    /// [`Model::evaluate`]'s to the bit (`max a_peak` is the largest of its
+    /// per-demo `a_peak`).
+    pub fn evaluate_lanes<const L: usize>(&self, dm: f64, km: [f64; L]) -> [[f64; 3]; L] {
         let mut d_sum = [0.0; L];
+        let mut peak = [0.0f64; L];
         for i in 0..self.demos.len() {
-            let (d, _) = self.integrate::<L, false>(i, dm, km);
+            let (d, a) = self.integrate::<L, true>(i, dm, km);
             for l in 0..L {
                 d_sum[l] += d[l];
+                peak[l] = peak[l].max(a[l]);
             }
         }
         let s = self.similarity.evaluate_lanes(dm, km);
-        std::array::from_fn(|l| (d_sum[l], s[l]))
+        std::array::from_fn(|l| [d_sum[l], s[l], peak[l]])
+    }
+
+    /// `J = S + k sum d` at one gain pair, the same bits as
+    /// `evaluate(dm, km).j(k)` without the per-demo lists and `a_peak`.
+    pub fn j(&self, dm: f64, km: f64, k: f64) -> f64 {
+        let mut d_sum = 0.0;
+        for i in 0..self.demos.len() {
+            d_sum += self.integrate::<1, false>(i, dm, [km]).0[0];
+        }
+        self.similarity.evaluate(dm, km) + k * d_sum
+    }
+
+    /// `S` alone at one gain pair (no integration).
+    pub fn s(&self, dm: f64, km: f64) -> f64 {
+        self.similarity.evaluate(dm, km)
+    }
+
+    /// The similarity parts (standardised forcing terms, shares of S).
+    pub fn similarity(&self) -> &Similarity {
+        &self.similarity
+    }
+
+    /// The model of the demos at `indices` (in that order, repeats allowed:
+    /// a bootstrap resample), reusing every per-demo fit: no demo is
+    /// prepared or fitted again.
+    pub fn subset(&self, indices: &[usize]) -> Result<Self> {
+        if let Some(&bad) = indices.iter().find(|&&i| i >= self.demos.len()) {
+            return Err(Error::InvalidSetting(format!(
+                "no demo {bad} in a model of {}",
+                self.demos.len()
+            )));
+        }
+        if indices.is_empty() {
+            return Err(Error::NoUsableDemo {
+                reasons: Vec::new(),
+            });
+        }
+        Ok(Self {
+            demos: indices.iter().map(|&i| self.demos[i].clone()).collect(),
+            settings: self.settings,
+            basis: self.basis.clone(),
+            projections: indices
+                .iter()
+                .map(|&i| self.projections[i].clone())
+                .collect(),
+            similarity: self.similarity.subset(indices),
+            kernels: indices.iter().map(|&i| self.kernels[i].clone()).collect(),
+        })
     }
 
     /// Integrates demo `i` at `(dm, km[l])` for each lane (method.md section

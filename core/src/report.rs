@@ -12,9 +12,17 @@
 //!   "optimum": null | {"dm", "km", "zeta", "j", "s", "d_sum",
 //!                      "on_edge", "edge", "grid_min_j", "iterations", "converged"},
 //!   "table": [{"name", "dm", "km", "zeta", "d_mean": [m per demo],
-//!              "a_peak": [m/s^2 per demo], "d_sum", "s", "j"}]
+//!              "a_peak": [m/s^2 per demo], "d_sum", "s", "j"}],
+//!   "diagnostics": {"depth", "flat", "k_ratio", "balanced_k",      (when computed)
+//!                   "s_minimum": {"dm", "km", "s"},
+//!                   "demos": [{"name", "s_share", "loo": {"dm", "km", "j", "on_edge"}}],
+//!                   "bootstrap": {"n", "seed", "dm": [p5, p50, p95], "km": [..],
+//!                                 "on_edge_fraction"}},
+//!   "diagnostics_about": {"grid", "resamples", "notes"}             (with diagnostics)
 //! }
 //! ```
+//!
+//! A diagnostic that cannot be computed (one demo: S-based ones) is `null`.
 //!
 //! `edge` names the box sides the optimum lies on ("" when interior);
 //! `d_mean` and `a_peak` follow `demos`' order.
@@ -23,6 +31,7 @@ use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
 
+use crate::diagnostics::{DiagAbout, Diagnostics};
 use crate::extract::Extraction;
 use crate::model::{Model, PointEval};
 use crate::presets::preset_rows;
@@ -152,6 +161,12 @@ pub struct Report {
     pub optimum: Option<Optimum>,
     /// Table I: `Extracted` (when known), the paper's gains, then any others.
     pub table: Vec<TableRow>,
+    /// The diagnostics of the extraction, when computed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diagnostics: Option<Diagnostics>,
+    /// How the diagnostics were made.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diagnostics_about: Option<DiagAbout>,
 }
 
 /// Table I's rows: `Extracted` (when known), the five paper presets, then
@@ -199,7 +214,16 @@ impl Report {
             demos,
             optimum: extraction.map(Optimum::from),
             table,
+            diagnostics: None,
+            diagnostics_about: None,
         }
+    }
+
+    /// The report with the extraction's diagnostics.
+    pub fn with_diagnostics(mut self, diagnostics: Diagnostics, about: DiagAbout) -> Self {
+        self.diagnostics = Some(diagnostics);
+        self.diagnostics_about = Some(about);
+        self
     }
 
     /// The demos' names.
@@ -213,6 +237,17 @@ impl Report {
             return "no optimum extracted\n".to_owned();
         };
         let mut s = String::new();
+        if let Some(d) = self.diagnostics.as_ref().filter(|d| d.flat) {
+            let depth = d
+                .depth
+                .map_or_else(|| "undefined".to_owned(), |v| format!("{v:.4}"));
+            let _ = writeln!(
+                s,
+                "the data do not determine the gains: J is flat (depth {depth} < {}); its least \
+                 value is at",
+                crate::diagnostics::FLAT_DEPTH
+            );
+        }
         let _ = writeln!(s, "(M:D:K) = 1 : {:.4} : {:.4}", o.dm, o.km);
         let _ = writeln!(s, "zeta    = {:.4}", o.zeta);
         let _ = writeln!(
@@ -224,6 +259,132 @@ impl Report {
             let _ = writeln!(s, "on edge = yes: {} (widen the range)", o.edge);
         } else {
             let _ = writeln!(s, "on edge = no");
+        }
+        s
+    }
+
+    /// The diagnostics in words (empty without them): the inconsistent
+    /// demos first, then depth and balance, the S minimum, leave-one-out and
+    /// the bootstrap.
+    pub fn diagnostics_text(&self) -> String {
+        let (Some(d), Some(about)) = (&self.diagnostics, &self.diagnostics_about) else {
+            return String::new();
+        };
+        let mut s = String::new();
+        let n = d.demos.len();
+        let opt = |v: Option<f64>, prec: usize| {
+            v.map_or_else(|| "n/a".to_owned(), |v| format!("{v:.prec$}"))
+        };
+        let bad = d.inconsistent();
+        if bad.is_empty() {
+            let _ = writeln!(
+                s,
+                "consistent: no demo's share of S is above {:.0}/N",
+                crate::diagnostics::INCONSISTENT_SHARE
+            );
+        } else {
+            let _ = writeln!(
+                s,
+                "inconsistent demos (share of S above {:.0}/N = {:.3}):",
+                crate::diagnostics::INCONSISTENT_SHARE,
+                crate::diagnostics::INCONSISTENT_SHARE / n as f64
+            );
+            for &i in &bad {
+                let dd = &d.demos[i];
+                let _ = writeln!(s, "  {}  share {}", dd.name, opt(dd.s_share, 3));
+            }
+        }
+        let verdict = if d.flat {
+            "FLAT: the data do not determine the gains"
+        } else {
+            "determined"
+        };
+        let _ = writeln!(
+            s,
+            "depth   = {}  ({verdict}; flat below {})",
+            opt(d.depth, 4),
+            crate::diagnostics::FLAT_DEPTH
+        );
+        let _ = writeln!(
+            s,
+            "k_ratio = {}  (k sum d / S at the optimum)",
+            opt(d.k_ratio, 4)
+        );
+        let _ = writeln!(
+            s,
+            "balanced k = {}  (median S / median sum d)",
+            opt(d.balanced_k, 4)
+        );
+        match &d.s_minimum {
+            Some(m) => {
+                let _ = writeln!(
+                    s,
+                    "S minimum: D/M {:.4}, K/M {:.4}, S {:.6}",
+                    m.dm, m.km, m.s
+                );
+            }
+            None => {
+                let _ = writeln!(s, "S minimum: n/a");
+            }
+        }
+        let g = about.grid;
+        let _ = writeln!(
+            s,
+            "\nper demo (leave-one-out and bootstrap on a {}x{} grid, same box):",
+            g.dm.n, g.km.n
+        );
+        let name_w = d
+            .demos
+            .iter()
+            .map(|x| x.name.len())
+            .max()
+            .unwrap_or(4)
+            .max(4);
+        let _ = writeln!(
+            s,
+            "{:<name_w$}  {:>7}  {:>10}  {:>10}  {:>9}  {:>7}",
+            "demo", "share", "LOO D/M", "LOO K/M", "LOO J", "on edge"
+        );
+        for dd in &d.demos {
+            let (dm, km, j, edge) = dd
+                .loo
+                .map_or(("-".into(), "-".into(), "-".into(), "-"), |l| {
+                    (
+                        format!("{:.3}", l.dm),
+                        format!("{:.3}", l.km),
+                        format!("{:.5}", l.j),
+                        if l.on_edge { "yes" } else { "no" },
+                    )
+                });
+            let _ = writeln!(
+                s,
+                "{:<name_w$}  {:>7}  {dm:>10}  {km:>10}  {j:>9}  {edge:>7}",
+                dd.name,
+                opt(dd.s_share, 3)
+            );
+        }
+        match &d.bootstrap {
+            Some(b) => {
+                let _ = writeln!(
+                    s,
+                    "\nbootstrap ({} resamples, seed {}): D/M {:.3} / {:.3} / {:.3}, K/M {:.3} / {:.3} / {:.3} (5/50/95 %), on an edge {:.0} %",
+                    b.n,
+                    b.seed,
+                    b.dm[0],
+                    b.dm[1],
+                    b.dm[2],
+                    b.km[0],
+                    b.km[1],
+                    b.km[2],
+                    b.on_edge_fraction * 100.0
+                );
+            }
+            None => {
+                let _ = writeln!(s, "\nbootstrap: n/a");
+            }
+        }
+        for note in &about.notes {
+            let _ = writeln!(s, "note: {note}");
         }
         s
     }

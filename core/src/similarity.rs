@@ -84,17 +84,8 @@ impl Similarity {
         // 1 / sd per axis, demo and lane, from the covariance quadratic form.
         let mut inv = vec![[0.0; L]; 3 * nd];
         for (slot, c) in inv.iter_mut().zip(&self.cov) {
-            let [va, vb, vc, cab, cac, cbc] = *c;
             for l in 0..L {
-                let k = km[l];
-                let var = va
-                    + dm * dm * vb
-                    + k * k * vc
-                    + 2.0 * dm * cab
-                    + 2.0 * k * cac
-                    + 2.0 * dm * k * cbc;
-                let sd = var.max(0.0).sqrt();
-                slot[l] = if sd < SD_FLOOR { 0.0 } else { 1.0 / sd };
+                slot[l] = inverse_sd(c, dm, km[l]);
             }
         }
         let inv_nd = 1.0 / nd as f64;
@@ -133,6 +124,112 @@ impl Similarity {
         let dt = 1.0 / (n - 1) as f64;
         total.map(|t| t * dt)
     }
+}
+
+/// Every demo's standardised target forcing term at one gain pair, and the
+/// integrand of `S` (method.md sections 5 and 9).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Standardised {
+    /// `f[demo][k][axis]`: `f_stand` on the grid.
+    pub f: Vec<Vec<[f64; 3]>>,
+    /// `sqrt(sigma_fx^2 + sigma_fy^2 + sigma_fz^2)` per grid point (0 with
+    /// fewer than two demos): `S` is its trapezoid integral.
+    pub sigma: Vec<f64>,
+}
+
+impl Similarity {
+    /// The similarity of the demos at `indices` (repeats allowed), from the
+    /// parts already centred.
+    pub fn subset(&self, indices: &[usize]) -> Self {
+        let (n, nd, m) = (self.n, self.demos, indices.len());
+        let mut parts = Vec::with_capacity(n * 3 * m);
+        for row in self.parts.chunks(nd.max(1)) {
+            parts.extend(indices.iter().map(|&i| row[i]));
+        }
+        let mut cov = Vec::with_capacity(3 * m);
+        for axis in 0..3 {
+            cov.extend(indices.iter().map(|&i| self.cov[axis * nd + i]));
+        }
+        Self {
+            n,
+            demos: m,
+            parts,
+            cov,
+        }
+    }
+
+    /// Every demo's `f_stand` and the integrand of `S` at `(dm, km)`.
+    pub fn standardised(&self, dm: f64, km: f64) -> Standardised {
+        let (n, nd) = (self.n, self.demos);
+        let inv: Vec<f64> = self.cov.iter().map(|c| inverse_sd(c, dm, km)).collect();
+        let mut f = vec![vec![[0.0; 3]; n]; nd];
+        for k in 0..n {
+            for axis in 0..3 {
+                for (di, &[a, b, c]) in self.parts[(k * 3 + axis) * nd..][..nd].iter().enumerate() {
+                    f[di][k][axis] = (a + dm * b + km * c) * inv[axis * nd + di];
+                }
+            }
+        }
+        let sigma = (0..n)
+            .map(|k| {
+                if nd < 2 {
+                    return 0.0;
+                }
+                let var: f64 = (0..3)
+                    .map(|axis| {
+                        let mean = f.iter().map(|d| d[k][axis]).sum::<f64>() / nd as f64;
+                        f.iter()
+                            .map(|d| (d[k][axis] - mean) * (d[k][axis] - mean))
+                            .sum::<f64>()
+                            / (nd - 1) as f64
+                    })
+                    .sum();
+                var.sqrt()
+            })
+            .collect();
+        Standardised { f, sigma }
+    }
+
+    /// Each demo's share of S at `(dm, km)` (method.md section 9):
+    /// `q_i = integral sum_axes (f_stand(i) - mean_j f_stand(j))^2`,
+    /// `share_i = q_i / sum_j q_j`; `None` with fewer than two demos, equal
+    /// shares when every demo's term is the same.
+    pub fn shares(&self, dm: f64, km: f64) -> Option<Vec<f64>> {
+        let nd = self.demos;
+        if nd < 2 || self.n < 2 {
+            return None;
+        }
+        let st = self.standardised(dm, km);
+        let n = self.n;
+        let mut q = vec![0.0; nd];
+        for k in 0..n {
+            let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
+            for axis in 0..3 {
+                let mean = st.f.iter().map(|d| d[k][axis]).sum::<f64>() / nd as f64;
+                for (qi, d) in q.iter_mut().zip(&st.f) {
+                    let e = d[k][axis] - mean;
+                    *qi += w * e * e;
+                }
+            }
+        }
+        let dt = 1.0 / (n - 1) as f64;
+        let total: f64 = q.iter().map(|v| v * dt).sum();
+        if total <= 0.0 {
+            return Some(vec![1.0 / nd as f64; nd]);
+        }
+        Some(q.iter().map(|v| v * dt / total).collect())
+    }
+}
+
+/// `1 / sd` of a demo's axis at `(dm, km)` from its covariance
+/// `[vA, vB, vC, cAB, cAC, cBC]` (0 below [`SD_FLOOR`]).
+#[inline]
+fn inverse_sd(c: &[f64; 6], dm: f64, km: f64) -> f64 {
+    let [va, vb, vc, cab, cac, cbc] = *c;
+    let var =
+        va + dm * dm * vb + km * km * vc + 2.0 * dm * cab + 2.0 * km * cac + 2.0 * dm * km * cbc;
+    let sd = var.max(0.0).sqrt();
+    if sd < SD_FLOOR { 0.0 } else { 1.0 / sd }
 }
 
 /// The trapezoid sum `sum_k w_k v_k` with `w = 1/2` at both ends, for unit spacing.

@@ -1,10 +1,15 @@
-//! `dmpscope extract`: the gains minimising J, and Table I comparing them
-//! with the paper's gains.
+//! `dmpscope extract`: the gains minimising J, whether the data determine
+//! them (the diagnostics of method.md section 9), and Table I comparing
+//! them with the paper's gains.
+
+use std::sync::Arc;
 
 use dmpscope_core::Report;
+use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
 
 use super::inputs::InputArgs;
 use super::landscape::{GridArgs, landscape_and_optimum};
+use super::output::progress_bar;
 
 /// Arguments of `extract`.
 #[derive(Debug, clap::Args)]
@@ -14,21 +19,58 @@ pub struct Args {
     #[command(flatten)]
     grid: GridArgs,
     /// Print the report as JSON (the shape documented in
-    /// `dmpscope_core::report`: k, demos, optimum, table) instead of text.
+    /// `dmpscope_core::report`: k, demos, optimum, table, diagnostics)
+    /// instead of text.
     #[arg(long)]
     json: bool,
+    /// Skip the diagnostics (depth, shares, leave-one-out, bootstrap).
+    #[arg(long)]
+    no_diagnostics: bool,
+    /// Bootstrap resamples.
+    #[arg(long, default_value_t = DiagSettings::default().bootstrap)]
+    bootstrap: usize,
+    /// The bootstrap's seed.
+    #[arg(long, default_value_t = DiagSettings::default().seed)]
+    bootstrap_seed: u64,
+    /// Points per axis of the leave-one-out and bootstrap extractions' grid
+    /// (same box; at most --grid).
+    #[arg(long, default_value_t = DiagSettings::default().grid_points)]
+    diag_grid: usize,
 }
 
-/// Prints `(M:D:K)`, zeta, J, the edge flag and Table I.
+/// Prints `(M:D:K)`, zeta, J, the edge flag, the diagnostics and Table I.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let (_, model, _, optimum) = landscape_and_optimum(&args.input, &args.grid)?;
-    let report = Report::new(&model, Some(&optimum), args.grid.k);
+    let (_, model, land, optimum) = landscape_and_optimum(&args.input, &args.grid)?;
+    let mut report = Report::new(&model, Some(&optimum), args.grid.k);
+    if !args.no_diagnostics {
+        let settings = DiagSettings {
+            grid_points: args.diag_grid,
+            bootstrap: args.bootstrap,
+            seed: args.bootstrap_seed,
+        };
+        let mut job = DiagnosticsJob::new(Arc::clone(&model), &land, &optimum, settings);
+        let bar = progress_bar(job.progress().1 as u64, "diagnostics");
+        job.run(&|done| bar.set_position(done as u64));
+        bar.finish_and_clear();
+        if job.diagnostics().flat {
+            eprintln!(
+                "warning: the optimum is flat (depth below {}): the data do not determine the gains",
+                dmpscope_core::diagnostics::FLAT_DEPTH
+            );
+        }
+        report = report.with_diagnostics(job.diagnostics().clone(), job.about().clone());
+    }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(());
     }
     print!("{}", report.optimum_text());
     println!();
+    let diag = report.diagnostics_text();
+    if !diag.is_empty() {
+        print!("{diag}");
+        println!();
+    }
     print!("{}", report.table_text());
     Ok(())
 }

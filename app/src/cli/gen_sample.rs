@@ -1,10 +1,12 @@
-//! `dmpscope gen-sample`: writes the bundled synthetic recording
-//! (`assets/reach10.mcap`), deterministic from a seed.
+//! `dmpscope gen-sample`: writes the bundled synthetic recordings
+//! (`assets/reach10.mcap`; with `--planted`, demos sharing one forcing term
+//! at planted gains, `assets/planted8.mcap`), deterministic from a seed.
 
 use std::path::PathBuf;
 
 use anyhow::Context;
 use dmpscope_core::io::write::{BulkTopic, TopicSamples, write_pose_stamped_with_bulk};
+use dmpscope_core::planted::{PlantedSpec, planted_demos};
 use dmpscope_core::synth::reach_demos;
 
 /// Arguments of `gen-sample`.
@@ -19,6 +21,14 @@ pub struct Args {
     /// Number of demonstrations.
     #[arg(long, default_value_t = 10)]
     demos: usize,
+    /// Instead of human-like reaches: demos integrated from one unit-time
+    /// DMP with these gains (D/M K/M) and one shared forcing term, goals
+    /// and durations varied per demo.
+    #[arg(long, num_args = 2, value_names = ["DM", "KM"])]
+    planted: Option<Vec<f64>>,
+    /// Position noise of the planted demos (standard deviation per axis), mm.
+    #[arg(long, default_value_t = 0.1, requires = "planted")]
+    noise_mm: f64,
     /// Write uncompressed chunks instead of zstd.
     #[arg(long)]
     uncompressed: bool,
@@ -36,7 +46,27 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if args.demos == 0 || args.demos > 99 {
         anyhow::bail!("--demos must be 1 to 99, got {}", args.demos);
     }
-    let demos = reach_demos(args.seed, args.demos, EPOCH_NS);
+    let demos = match args.planted.as_deref() {
+        Some(&[dm, km]) => {
+            let valid = |v: f64| v.is_finite() && v > 0.0;
+            if !(valid(dm) && valid(km)) {
+                anyhow::bail!("--planted gains must be positive, got {dm} {km}");
+            }
+            if !(args.noise_mm.is_finite() && args.noise_mm >= 0.0) {
+                anyhow::bail!("--noise-mm must be >= 0, got {}", args.noise_mm);
+            }
+            let spec = PlantedSpec {
+                dm,
+                km,
+                noise_m: args.noise_mm * 1e-3,
+                demos: args.demos,
+                seed: args.seed,
+            };
+            planted_demos(&spec, EPOCH_NS)
+        }
+        Some(other) => anyhow::bail!("--planted takes two gains, got {other:?}"),
+        None => reach_demos(args.seed, args.demos, EPOCH_NS),
+    };
     let topics: Vec<String> = (1..=demos.len()).map(|i| format!("/demo_{i:02}")).collect();
     let samples: Vec<TopicSamples<'_>> = demos
         .iter()
@@ -67,6 +97,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .filter(|(d, _)| d.corrected)
         .map(|(_, t)| t.as_str())
         .collect();
+    if let Some(g) = &args.planted {
+        eprintln!(
+            "wrote {} demos planted at D/M {} K/M {} ({} mm noise) to {}",
+            demos.len(),
+            g[0],
+            g[1],
+            args.noise_mm,
+            args.out.display()
+        );
+        return Ok(());
+    }
     eprintln!(
         "wrote {} demos to {} (hesitation and correction in: {})",
         demos.len(),

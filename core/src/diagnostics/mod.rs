@@ -1,0 +1,384 @@
+//! Can the gains be trusted? The diagnostics of an extraction (method.md
+//! section 9): the optimum's depth and balance, each demo's share of S, the
+//! S minimum alone, leave-one-out and bootstrap optima.
+//!
+//! The cheap parts are computed when a [`DiagnosticsJob`] is made; the
+//! resampled extractions (one per demo left out, one per bootstrap resample)
+//! are its steps, so a browser can slice them and an app can show them as
+//! they come; [`DiagnosticsJob::run`] does them all (on every core with the
+//! `parallel` feature). Resampled extractions use a coarser grid over the
+//! same box ([`DiagSettings::grid`]), then the same Nelder-Mead refinement.
+
+mod balance;
+mod resample;
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+pub use balance::{FLAT_DEPTH, balanced_k, depth, k_ratio};
+pub use resample::{SubOptimum, leave_out, optimum_of, percentiles, resamples};
+
+use crate::extract::{Extraction, refine};
+use crate::landscape::{Axis, Grid, Landscape};
+use crate::model::Model;
+
+/// A demo whose share of S is above this many times the fair share `1/N` is
+/// flagged as inconsistent with the others.
+pub const INCONSISTENT_SHARE: f64 = 2.0;
+
+/// How the diagnostics are computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct DiagSettings {
+    /// Points per axis of the resampled extractions' grid (at most the
+    /// landscape's own).
+    pub grid_points: usize,
+    /// Bootstrap resamples.
+    pub bootstrap: usize,
+    /// The bootstrap's seed.
+    pub seed: u64,
+}
+
+impl Default for DiagSettings {
+    fn default() -> Self {
+        Self {
+            grid_points: 32,
+            bootstrap: 100,
+            seed: 1,
+        }
+    }
+}
+
+impl DiagSettings {
+    /// The grid of the resampled extractions: `main`'s box and spacing with
+    /// at most [`DiagSettings::grid_points`] points per axis.
+    pub fn grid(&self, main: &Grid) -> Grid {
+        let coarse = |a: Axis| Axis {
+            n: a.n.min(self.grid_points.max(2)),
+            ..a
+        };
+        Grid {
+            dm: coarse(main.dm),
+            km: coarse(main.km),
+        }
+    }
+}
+
+/// The grid minimum of S refined like J's.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SMinimum {
+    /// D/M.
+    pub dm: f64,
+    /// K/M.
+    pub km: f64,
+    /// S there.
+    pub s: f64,
+}
+
+/// One demo's diagnostics.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DemoDiagnostics {
+    /// The demo's name.
+    pub name: String,
+    /// Its share of S at the optimum (`None` with fewer than two demos).
+    pub s_share: Option<f64>,
+    /// The optimum without it (`None` until computed, or with one demo).
+    pub loo: Option<SubOptimum>,
+}
+
+impl DemoDiagnostics {
+    /// Whether its share of S is well above the fair share of `n` demos.
+    pub fn inconsistent(&self, n: usize) -> bool {
+        self.s_share
+            .is_some_and(|s| n >= 3 && s > INCONSISTENT_SHARE / n as f64)
+    }
+}
+
+/// The bootstrap's summary.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Bootstrap {
+    /// Resamples whose optimum was found.
+    pub n: usize,
+    /// The seed.
+    pub seed: u64,
+    /// Percentiles 5, 50, 95 of the optima's D/M.
+    pub dm: [f64; 3],
+    /// Percentiles 5, 50, 95 of the optima's K/M.
+    pub km: [f64; 3],
+    /// The fraction of optima on the box's edge.
+    pub on_edge_fraction: f64,
+}
+
+/// Everything `extract --json` reports under `diagnostics`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Diagnostics {
+    /// `max(0, min(boundary J) / J* - 1)` (`None` when undefined).
+    pub depth: Option<f64>,
+    /// Depth below [`FLAT_DEPTH`]: the data do not determine the gains.
+    pub flat: bool,
+    /// `k sum d / S` at the optimum (`None` where S is 0).
+    pub k_ratio: Option<f64>,
+    /// `median(S) / median(sum d)` over the grid (`None` where S is 0).
+    pub balanced_k: Option<f64>,
+    /// The S minimum alone (`None` with fewer than two demos).
+    pub s_minimum: Option<SMinimum>,
+    /// Per demo, in the model's order.
+    pub demos: Vec<DemoDiagnostics>,
+    /// The bootstrap (`None` until every resample is done, or with one demo).
+    pub bootstrap: Option<Bootstrap>,
+}
+
+impl Diagnostics {
+    /// The demos flagged as inconsistent, most inconsistent first.
+    pub fn inconsistent(&self) -> Vec<usize> {
+        let n = self.demos.len();
+        let mut out: Vec<usize> = (0..n).filter(|&i| self.demos[i].inconsistent(n)).collect();
+        out.sort_by(|&a, &b| {
+            let share = |i: usize| self.demos[i].s_share.unwrap_or(0.0);
+            share(b).total_cmp(&share(a))
+        });
+        out
+    }
+}
+
+/// How the diagnostics were made: the resampled extractions' grid, the
+/// resamples, and what could not be computed and why.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DiagAbout {
+    /// The grid of the leave-one-out and bootstrap extractions.
+    pub grid: Grid,
+    /// The bootstrap resamples (demo indices).
+    pub resamples: usize,
+    /// What the user should know (too few demos for some parts).
+    pub notes: Vec<String>,
+}
+
+/// The diagnostics being computed: the cheap parts at once, the resampled
+/// extractions step by step.
+pub struct DiagnosticsJob {
+    model: Arc<Model>,
+    k: f64,
+    settings: DiagSettings,
+    grid: Grid,
+    diagnostics: Diagnostics,
+    about: DiagAbout,
+    /// The resampled extractions still to do: leave-one-out (`Loo(i)`) first.
+    todo: Vec<Item>,
+    done: usize,
+    resample_list: Vec<Vec<usize>>,
+    boot: Vec<Option<SubOptimum>>,
+}
+
+/// One resampled extraction.
+#[derive(Clone, Copy, Debug)]
+enum Item {
+    Loo(usize),
+    Boot(usize),
+}
+
+impl DiagnosticsJob {
+    /// The diagnostics of `extraction` on `landscape` (complete) of `model`.
+    pub fn new(
+        model: Arc<Model>,
+        landscape: &Landscape,
+        extraction: &Extraction,
+        settings: DiagSettings,
+    ) -> Self {
+        let resample_list = resamples(model.demos().len(), settings.bootstrap, settings.seed);
+        Self::with_resamples(model, landscape, extraction, settings, resample_list)
+    }
+
+    /// As [`DiagnosticsJob::new`] with a given resample list (tests against
+    /// an independent implementation).
+    pub fn with_resamples(
+        model: Arc<Model>,
+        landscape: &Landscape,
+        extraction: &Extraction,
+        settings: DiagSettings,
+        resample_list: Vec<Vec<usize>>,
+    ) -> Self {
+        let n = model.demos().len();
+        let resample_list = if n >= 2 { resample_list } else { Vec::new() };
+        let (k, x) = (extraction.k, &extraction.eval);
+        let depth = depth(landscape, k, extraction.j);
+        let shares = model.similarity().shares(x.dm, x.km);
+        let s_minimum = (n >= 2)
+            .then(|| refine(landscape, &landscape.s, |dm, km| model.s(dm, km)))
+            .flatten()
+            .map(|r| SMinimum {
+                dm: r.dm,
+                km: r.km,
+                s: r.value,
+            });
+        let demos = model
+            .demos()
+            .iter()
+            .enumerate()
+            .map(|(i, d)| DemoDiagnostics {
+                name: d.name.clone(),
+                s_share: shares.as_ref().map(|s| s[i]),
+                loo: None,
+            })
+            .collect();
+        let mut notes = Vec::new();
+        let mut todo = Vec::new();
+        match n {
+            0 | 1 => notes.push(
+                "S, its shares and minimum, leave-one-out and the bootstrap need two or more \
+                 demonstrations"
+                    .to_owned(),
+            ),
+            2 => notes.push(
+                "with two demonstrations each leave-one-out model has one demo (S is 0 there, its \
+                 optimum follows sum d alone), and the bootstrap has only three distinct resamples"
+                    .to_owned(),
+            ),
+            _ => {}
+        }
+        if n >= 2 {
+            todo.extend((0..n).map(Item::Loo));
+            todo.extend((0..resample_list.len()).map(Item::Boot));
+        }
+        todo.reverse();
+        let grid = settings.grid(&landscape.grid);
+        Self {
+            k,
+            settings,
+            grid,
+            diagnostics: Diagnostics {
+                flat: depth.is_none_or(|d| d < FLAT_DEPTH),
+                depth,
+                k_ratio: k_ratio(extraction),
+                balanced_k: balanced_k(landscape),
+                s_minimum,
+                demos,
+                bootstrap: None,
+            },
+            about: DiagAbout {
+                grid,
+                resamples: resample_list.len(),
+                notes,
+            },
+            boot: vec![None; resample_list.len()],
+            resample_list,
+            todo,
+            done: 0,
+            model,
+        }
+    }
+
+    /// The diagnostics so far.
+    pub fn diagnostics(&self) -> &Diagnostics {
+        &self.diagnostics
+    }
+
+    /// How they were made.
+    pub fn about(&self) -> &DiagAbout {
+        &self.about
+    }
+
+    /// The bootstrap optima found so far (the cloud the app draws).
+    pub fn bootstrap_optima(&self) -> Vec<SubOptimum> {
+        self.boot.iter().flatten().copied().collect()
+    }
+
+    /// Resampled extractions done, and in all.
+    pub fn progress(&self) -> (usize, usize) {
+        (self.done, self.done + self.todo.len())
+    }
+
+    /// Whether every part is computed.
+    pub fn is_done(&self) -> bool {
+        self.todo.is_empty()
+    }
+
+    fn indices(&self, item: Item) -> Vec<usize> {
+        match item {
+            Item::Loo(i) => leave_out(self.model.demos().len(), i),
+            Item::Boot(b) => self.resample_list[b].clone(),
+        }
+    }
+
+    fn record(&mut self, item: Item, found: Option<SubOptimum>) {
+        match item {
+            Item::Loo(i) => {
+                if let Some(d) = self.diagnostics.demos.get_mut(i) {
+                    d.loo = found;
+                }
+            }
+            Item::Boot(b) => {
+                if let Some(slot) = self.boot.get_mut(b) {
+                    *slot = found;
+                }
+            }
+        }
+        self.done += 1;
+        if self.todo.is_empty() && !self.boot.is_empty() {
+            self.summarise_bootstrap();
+        }
+    }
+
+    fn summarise_bootstrap(&mut self) {
+        let optima = self.bootstrap_optima();
+        if optima.len() < self.boot.len() {
+            self.about.notes.push(format!(
+                "{} of {} bootstrap resamples had no optimum",
+                self.boot.len() - optima.len(),
+                self.boot.len()
+            ));
+        }
+        if optima.is_empty() {
+            return;
+        }
+        let dm: Vec<f64> = optima.iter().map(|o| o.dm).collect();
+        let km: Vec<f64> = optima.iter().map(|o| o.km).collect();
+        let edge = optima.iter().filter(|o| o.on_edge).count();
+        self.diagnostics.bootstrap = Some(Bootstrap {
+            n: optima.len(),
+            seed: self.settings.seed,
+            dm: percentiles(&dm, [5.0, 50.0, 95.0]),
+            km: percentiles(&km, [5.0, 50.0, 95.0]),
+            on_edge_fraction: edge as f64 / optima.len() as f64,
+        });
+    }
+
+    /// Computes one resampled extraction; returns whether all are done.
+    pub fn step(&mut self) -> bool {
+        if let Some(item) = self.todo.pop() {
+            let found = optimum_of(&self.model, &self.indices(item), self.grid, self.k).ok();
+            self.record(item, found);
+        }
+        self.is_done()
+    }
+
+    /// Computes every remaining part (on all cores with `parallel`),
+    /// calling `progress(done)` as parts finish (from any thread).
+    pub fn run(&mut self, progress: &(dyn Fn(usize) + Sync)) {
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            use std::sync::atomic::{AtomicUsize, Ordering};
+            let items: Vec<Item> = self.todo.iter().rev().copied().collect();
+            let work: Vec<(Item, Vec<usize>)> =
+                items.iter().map(|&it| (it, self.indices(it))).collect();
+            let (model, grid, k) = (&self.model, self.grid, self.k);
+            let done = AtomicUsize::new(self.done);
+            let found: Vec<Option<SubOptimum>> = work
+                .par_iter()
+                .map(|(_, idx)| {
+                    let f = optimum_of(model, idx, grid, k).ok();
+                    progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+                    f
+                })
+                .collect();
+            for ((item, _), f) in work.into_iter().zip(found) {
+                self.todo.pop();
+                self.record(item, f);
+            }
+        }
+        while !self.step() {
+            progress(self.done);
+        }
+    }
+}
