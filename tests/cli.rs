@@ -43,7 +43,7 @@ fn info_lists_the_ten_sample_demos() {
             "{stdout}"
         );
     }
-    let json = dmpscope(&["info", "--json", "assets"]);
+    let json = dmpscope(&["info", "--json", sample().to_str().expect("path")]);
     let list: Value = serde_json::from_slice(&json.stdout).expect("info --json");
     let demos = list.as_array().expect("array");
     assert_eq!(demos.len(), 10);
@@ -131,6 +131,7 @@ fn extract_json_is_the_same_report_as_landscape_json() {
         "--grid",
         "12",
         "--json",
+        "--no-diagnostics",
     ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report: Value = serde_json::from_slice(&out.stdout).expect("json");
@@ -153,22 +154,55 @@ fn changing_k_recombines_the_same_grids() {
 
 #[test]
 fn a_folder_means_every_mcap_in_it() {
-    let out = dmpscope(&["info", "--json", sample().to_str().expect("path")]);
+    // The bundled samples, one after the other, and their folder.
+    let planted = repo().join("assets/planted8.mcap");
+    let out = dmpscope(&[
+        "info",
+        "--json",
+        planted.to_str().expect("path"),
+        sample().to_str().expect("path"),
+    ]);
     let folder = dmpscope(&[
         "info",
         "--json",
         repo().join("assets").to_str().expect("path"),
     ]);
-    assert_eq!(out.stdout, folder.stdout);
+    assert!(out.status.success() && folder.status.success());
+    let names = |o: &std::process::Output| -> Vec<String> {
+        let v: Value = serde_json::from_slice(&o.stdout).expect("json");
+        v.as_array()
+            .expect("list")
+            .iter()
+            .map(|d| d["name"].as_str().expect("name").to_owned())
+            .collect()
+    };
+    assert_eq!(names(&out), names(&folder));
+    assert_eq!(names(&folder).len(), 18);
 }
 
 #[test]
 fn extract_prints_gains_edge_flag_and_table() {
-    let out = dmpscope(&["extract", sample().to_str().expect("path"), "--grid", "16"]);
+    let out = dmpscope(&[
+        "extract",
+        sample().to_str().expect("path"),
+        "--grid",
+        "16",
+        "--bootstrap",
+        "4",
+    ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
-    assert!(stdout.starts_with("(M:D:K) = 1 : "), "{stdout}");
+    // The sample's optimum is on the K/M edge: flat, and said first.
+    assert!(
+        stdout.starts_with("the data do not determine the gains"),
+        "{stdout}"
+    );
     for needle in [
+        "(M:D:K) = 1 : ",
+        "depth   = ",
+        "S minimum: D/M",
+        "leave-one-out and bootstrap on a 16x16 grid",
+        "bootstrap (4 resamples, seed 1)",
         "zeta",
         "J ",
         "on edge = ",
@@ -314,4 +348,92 @@ fn help_lists_the_app_and_the_subcommands() {
     ] {
         assert!(help.contains(sub), "{help}");
     }
+}
+
+#[test]
+fn extract_json_has_exactly_the_documented_diagnostics() {
+    let planted = repo().join("assets/planted8.mcap");
+    let out = dmpscope(&[
+        "extract",
+        planted.to_str().expect("path"),
+        "--grid",
+        "24",
+        "--bootstrap",
+        "6",
+        "--diag-grid",
+        "12",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let doc: Value = serde_json::from_slice(&out.stdout).expect("json");
+    let d = &doc["diagnostics"];
+    assert_eq!(
+        sorted_keys(d),
+        [
+            "balanced_k",
+            "bootstrap",
+            "demos",
+            "depth",
+            "flat",
+            "k_ratio",
+            "s_minimum"
+        ]
+    );
+    assert_eq!(sorted_keys(&d["s_minimum"]), ["dm", "km", "s"]);
+    let demos = d["demos"].as_array().expect("demos");
+    assert_eq!(demos.len(), 8);
+    for (i, demo) in demos.iter().enumerate() {
+        assert_eq!(sorted_keys(demo), ["loo", "name", "s_share"]);
+        assert_eq!(sorted_keys(&demo["loo"]), ["dm", "j", "km", "on_edge"]);
+        assert_eq!(demo["name"], format!("planted8.mcap:/demo_{:02}", i + 1));
+    }
+    let shares: f64 = demos
+        .iter()
+        .map(|x| x["s_share"].as_f64().expect("share"))
+        .sum();
+    assert!((shares - 1.0).abs() < 1e-12, "shares sum to one: {shares}");
+    let b = &d["bootstrap"];
+    assert_eq!(
+        sorted_keys(b),
+        ["dm", "km", "n", "on_edge_fraction", "seed"]
+    );
+    assert_eq!(b["n"], 6);
+    assert_eq!(b["seed"], 1);
+    let p = b["dm"].as_array().expect("percentiles");
+    assert!(p[0].as_f64() <= p[1].as_f64() && p[1].as_f64() <= p[2].as_f64());
+    // On the planted demos the optimum is interior and determined.
+    assert_eq!(d["flat"], false);
+    assert_eq!(doc["optimum"]["on_edge"], false);
+    let about = &doc["diagnostics_about"];
+    assert_eq!(about["grid"]["dm"]["n"], 12);
+    assert_eq!(about["resamples"], 6);
+}
+
+#[test]
+fn one_or_two_demos_say_what_the_diagnostics_cannot_do() {
+    let csv = tmp("one-demo.csv");
+    let rows: String = (0..60)
+        .map(|k| {
+            let t = k as f64 / 50.0;
+            format!("{t},{},{},0\n", 0.3 * t * t, 0.1 * t)
+        })
+        .collect();
+    std::fs::write(&csv, rows).expect("csv");
+    let out = dmpscope(&[
+        "extract",
+        csv.to_str().expect("path"),
+        "--grid",
+        "8",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let doc: Value = serde_json::from_slice(&out.stdout).expect("json");
+    let d = &doc["diagnostics"];
+    assert!(d["s_minimum"].is_null() && d["bootstrap"].is_null() && d["k_ratio"].is_null());
+    assert!(d["demos"][0]["s_share"].is_null() && d["demos"][0]["loo"].is_null());
+    assert!(d["depth"].as_f64().is_some(), "depth still works: {d}");
+    let notes = doc["diagnostics_about"]["notes"].to_string();
+    assert!(notes.contains("two or more"), "{notes}");
+    let text_out = dmpscope(&["extract", csv.to_str().expect("path"), "--grid", "8"]);
+    assert!(text(&text_out.stdout).contains("need two or more"));
 }
