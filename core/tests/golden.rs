@@ -1,81 +1,16 @@
 //! The core against an independent NumPy/SciPy implementation of method.md
 //! (`tests/golden/`, see its README for how the values were made).
 
+mod golden_data;
+
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::landscape::{Axis, AxisScale, Grid};
-use dmpscope_core::{Model, PrepSettings, RawDemo, TimeSource, extract, landscape, prepare};
+use dmpscope_core::{Model, PrepSettings, extract, landscape, prepare};
+use golden_data::{close, f, fs, golden, model, raw_demos};
 use serde_json::Value;
-
-fn golden(name: &str) -> Value {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../tests/golden")
-        .join(name);
-    let text = std::fs::read_to_string(&path).expect("golden file");
-    serde_json::from_str(&text).expect("golden json")
-}
-
-fn f(v: &Value) -> f64 {
-    v.as_f64().expect("number")
-}
-
-fn fs(v: &Value) -> Vec<f64> {
-    v.as_array().expect("array").iter().map(f).collect()
-}
-
-/// Relative closeness with a floor for values near zero.
-#[track_caller]
-fn close(actual: f64, expected: f64, rel: f64, what: &str) {
-    let scale = expected.abs().max(1e-9);
-    assert!(
-        (actual - expected).abs() <= rel * scale,
-        "{what}: {actual} vs golden {expected} (rel {:.3e})",
-        (actual - expected).abs() / scale
-    );
-}
-
-fn raw_demos() -> Vec<RawDemo> {
-    let input = golden("input.json");
-    input["demos"]
-        .as_array()
-        .expect("demos")
-        .iter()
-        .map(|d| {
-            let name = d["name"].as_str().expect("name").to_owned();
-            RawDemo {
-                name: name.clone(),
-                file: "input.json".into(),
-                topic: name,
-                stamps_ns: d["stamps_ns"]
-                    .as_array()
-                    .expect("stamps")
-                    .iter()
-                    .map(|v| v.as_i64().expect("int stamp"))
-                    .collect(),
-                positions: d["positions"]
-                    .as_array()
-                    .expect("positions")
-                    .iter()
-                    .map(|p| {
-                        let p = fs(p);
-                        [p[0], p[1], p[2]]
-                    })
-                    .collect(),
-                time_source: TimeSource::HeaderStamp,
-            }
-        })
-        .collect()
-}
-
-fn model() -> Model {
-    let prepared = raw_demos()
-        .iter()
-        .map(|r| prepare(r, &PrepSettings::default()).expect("prepare"))
-        .collect();
-    Model::new(prepared, DmpSettings::default()).expect("model")
-}
 
 const REL: f64 = 1e-9;
 
