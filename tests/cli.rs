@@ -275,6 +275,26 @@ fn the_sample_generator_is_deterministic() {
         fresh == bundled,
         "assets/reach10.mcap differs from `dmpscope gen-sample`"
     );
+    let out = tmp("planted8.mcap");
+    let result = dmpscope(&[
+        "gen-sample",
+        "--planted",
+        "10.73",
+        "20.71",
+        "--noise-mm",
+        "0.1",
+        "--demos",
+        "8",
+        "--out",
+        out.to_str().expect("path"),
+    ]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    let fresh = std::fs::read(&out).expect("written");
+    let bundled = std::fs::read(repo().join("assets/planted8.mcap")).expect("bundled");
+    assert!(
+        fresh == bundled,
+        "assets/planted8.mcap differs from `dmpscope gen-sample --planted 10.73 20.71 --noise-mm 0.1 --demos 8`"
+    );
 }
 
 #[test]

@@ -1,0 +1,154 @@
+//! The method on demos that share one forcing term at planted gains
+//! (`core::planted`): the S minimum comes back at the planted gains, J's
+//! optimum is interior and determined; on the bundled reach sample (whose
+//! demos hesitate and correct) the optimum is flagged. Stiffer planted
+//! gains come back biased by the preprocessing: measured and bounded here.
+
+use std::sync::Arc;
+
+use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
+use dmpscope_core::io::{LoadOptions, SourceData, load_source};
+use dmpscope_core::landscape::{FillOrder, Grid, LandscapeJob};
+use dmpscope_core::planted::{PlantedSpec, planted_demos};
+use dmpscope_core::{
+    Extraction, Model, PrepSettings, RawDemo, TimeSource, Unusable, build_model, extract,
+};
+
+fn raw(demos: &[dmpscope_core::synth::SynthDemo]) -> Vec<RawDemo> {
+    demos
+        .iter()
+        .enumerate()
+        .map(|(i, d)| RawDemo {
+            name: format!("planted:{i}"),
+            file: "planted".into(),
+            topic: format!("/demo_{i:02}"),
+            stamps_ns: d.samples.iter().map(|s| s.0).collect(),
+            positions: d.samples.iter().map(|s| s.1).collect(),
+            time_source: TimeSource::HeaderStamp,
+        })
+        .collect()
+}
+
+/// The model, its extraction and the cheap diagnostics (no resampling).
+fn diagnose(
+    demos: &[RawDemo],
+) -> (
+    Arc<Model>,
+    Extraction,
+    dmpscope_core::diagnostics::Diagnostics,
+) {
+    let built = build_model(
+        demos,
+        &PrepSettings::default(),
+        Default::default(),
+        Unusable::Fail,
+    )
+    .expect("model");
+    let model = Arc::new(built.model);
+    let mut job =
+        LandscapeJob::new(model.clone(), Grid::default(), FillOrder::Raster).expect("job");
+    while !job.step_par(usize::MAX) {}
+    let land = job.into_landscape();
+    let x = extract(&model, &land, 20.0).expect("extraction");
+    let settings = DiagSettings {
+        bootstrap: 0,
+        ..DiagSettings::default()
+    };
+    let diag = DiagnosticsJob::new(model.clone(), &land, &x, settings);
+    (model, x, diag.diagnostics().clone())
+}
+
+fn planted(dm: f64, km: f64, noise_m: f64) -> Vec<RawDemo> {
+    let spec = PlantedSpec {
+        dm,
+        km,
+        noise_m,
+        demos: 8,
+        seed: 42,
+    };
+    raw(&planted_demos(&spec, 1_700_000_000_000_000_000))
+}
+
+#[test]
+fn planted_paper_gains_come_back_from_the_s_minimum_and_j_is_determined() {
+    let (_, x, d) = diagnose(&planted(10.73, 20.71, 0.0));
+    let m = d.s_minimum.expect("S minimum");
+    let (edm, ekm) = (m.dm / 10.73 - 1.0, m.km / 20.71 - 1.0);
+    eprintln!(
+        "planted 10.73 / 20.71, no noise: S minimum {:.4} / {:.4} ({:+.2} % / {:+.2} %), \
+         J optimum {:.4} / {:.4}, depth {:.3}",
+        m.dm,
+        m.km,
+        100.0 * edm,
+        100.0 * ekm,
+        x.eval.dm,
+        x.eval.km,
+        d.depth.unwrap_or(f64::NAN)
+    );
+    assert!(
+        edm.abs() < 0.05 && ekm.abs() < 0.05,
+        "within 5 %: {edm} {ekm}"
+    );
+    assert!(!x.on_edge(), "J's optimum is interior");
+    assert!(!d.flat, "and determined: depth {:?}", d.depth);
+    assert!(
+        d.inconsistent().is_empty(),
+        "no demo stands out: {:?}",
+        d.demos
+    );
+}
+
+#[test]
+fn the_bundled_reach_sample_is_flagged() {
+    let bytes = include_bytes!("../../assets/reach10.mcap");
+    let loaded = load_source(
+        "reach10.mcap",
+        SourceData::Bytes(bytes),
+        &LoadOptions::default(),
+    )
+    .expect("sample");
+    let (_, x, d) = diagnose(&loaded.demos);
+    assert!(x.on_edge(), "the sample's optimum is on the K/M edge");
+    assert!(d.flat, "and flat: depth {:?}", d.depth);
+}
+
+#[test]
+fn stiff_planted_gains_come_back_biased_low_by_the_preprocessing() {
+    let (_, _, d) = diagnose(&planted(30.0, 400.0, 0.0));
+    let m = d.s_minimum.expect("S minimum");
+    let (edm, ekm) = (m.dm / 30.0 - 1.0, m.km / 400.0 - 1.0);
+    eprintln!(
+        "planted 30 / 400, no noise: S minimum {:.3} / {:.3} ({:+.1} % / {:+.1} %)",
+        m.dm,
+        m.km,
+        100.0 * edm,
+        100.0 * ekm
+    );
+    // Savitzky-Golay's smoothing and the resampling bias the recovery low
+    // at stiff gains. An independent study measured about -17 % / -25 % on
+    // reaches of about 1.3 s; these planted reaches last 2 to 3 s, so the
+    // 21-sample window covers less of each: measured -5.7 % / -5.3 %.
+    assert!(
+        (-0.10..0.0).contains(&edm) && (-0.10..0.0).contains(&ekm),
+        "{edm} {ekm}"
+    );
+}
+
+#[test]
+fn with_the_bundled_planted_samples_noise_the_optimum_stays_interior_and_determined() {
+    let (_, x, d) = diagnose(&planted(10.73, 20.71, 1e-4));
+    let m = d.s_minimum.expect("S minimum");
+    eprintln!(
+        "planted 10.73 / 20.71, 0.1 mm noise: S minimum {:.3} / {:.3}, J optimum {:.3} / {:.3}, \
+         depth {:.3}",
+        m.dm,
+        m.km,
+        x.eval.dm,
+        x.eval.km,
+        d.depth.unwrap_or(f64::NAN)
+    );
+    assert!(!x.on_edge() && !d.flat, "depth {:?}", d.depth);
+    // Noise on y'' raises S most where the spring is soft: the S minimum
+    // moves to stiffer gains (measured +13 % / +13 %), still near.
+    assert!(m.dm / 10.73 < 1.3 && m.km / 20.71 < 1.3, "{m:?}");
+}
