@@ -17,7 +17,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 pub use balance::{FLAT_DEPTH, balanced_k, depth, k_ratio};
-pub use resample::{SubOptimum, leave_out, optimum_of, percentiles, resamples};
+pub use resample::{SubExtraction, SubOptimum, leave_out, optimum_of, percentiles, resamples};
 
 use crate::extract::{Extraction, refine};
 use crate::landscape::{Axis, Grid, Landscape};
@@ -168,6 +168,8 @@ pub struct DiagnosticsJob {
     done: usize,
     resample_list: Vec<Vec<usize>>,
     boot: Vec<Option<SubOptimum>>,
+    /// The extraction [`DiagnosticsJob::step_points`] is filling.
+    current: Option<(Item, SubExtraction)>,
 }
 
 /// One resampled extraction.
@@ -264,6 +266,7 @@ impl DiagnosticsJob {
             resample_list,
             todo,
             done: 0,
+            current: None,
             model,
         }
     }
@@ -285,12 +288,13 @@ impl DiagnosticsJob {
 
     /// Resampled extractions done, and in all.
     pub fn progress(&self) -> (usize, usize) {
-        (self.done, self.done + self.todo.len())
+        let open = self.todo.len() + usize::from(self.current.is_some());
+        (self.done, self.done + open)
     }
 
     /// Whether every part is computed.
     pub fn is_done(&self) -> bool {
-        self.todo.is_empty()
+        self.todo.is_empty() && self.current.is_none()
     }
 
     fn indices(&self, item: Item) -> Vec<usize> {
@@ -314,7 +318,7 @@ impl DiagnosticsJob {
             }
         }
         self.done += 1;
-        if self.todo.is_empty() && !self.boot.is_empty() {
+        if self.is_done() && !self.boot.is_empty() {
             self.summarise_bootstrap();
         }
     }
@@ -343,42 +347,78 @@ impl DiagnosticsJob {
         });
     }
 
+    /// Advances the resampled extractions by at most `max_points` landscape
+    /// points (or one refinement): the browser's time slices. Returns
+    /// whether all are done.
+    pub fn step_points(&mut self, max_points: usize) -> bool {
+        if self.current.is_none()
+            && let Some(item) = self.todo.pop()
+        {
+            match SubExtraction::new(&self.model, &self.indices(item), self.grid) {
+                Ok(part) => self.current = Some((item, part)),
+                Err(_) => self.record(item, None),
+            }
+            return self.is_done();
+        }
+        if let Some((item, part)) = &mut self.current
+            && part.step(max_points)
+        {
+            let (item, found) = (*item, part.finish(self.k).ok());
+            self.current = None;
+            self.record(item, found);
+        }
+        self.is_done()
+    }
+
     /// Computes one resampled extraction; returns whether all are done.
     pub fn step(&mut self) -> bool {
-        if let Some(item) = self.todo.pop() {
+        if let Some((item, mut part)) = self.current.take() {
+            while !part.step(usize::MAX) {}
+            let found = part.finish(self.k).ok();
+            self.record(item, found);
+        } else if let Some(item) = self.todo.pop() {
             let found = optimum_of(&self.model, &self.indices(item), self.grid, self.k).ok();
             self.record(item, found);
         }
         self.is_done()
     }
 
-    /// Computes every remaining part (on all cores with `parallel`),
-    /// calling `progress(done)` as parts finish (from any thread).
-    pub fn run(&mut self, progress: &(dyn Fn(usize) + Sync)) {
-        #[cfg(feature = "parallel")]
-        {
-            use rayon::prelude::*;
-            use std::sync::atomic::{AtomicUsize, Ordering};
-            let items: Vec<Item> = self.todo.iter().rev().copied().collect();
-            let work: Vec<(Item, Vec<usize>)> =
-                items.iter().map(|&it| (it, self.indices(it))).collect();
-            let (model, grid, k) = (&self.model, self.grid, self.k);
-            let done = AtomicUsize::new(self.done);
-            let found: Vec<Option<SubOptimum>> = work
-                .par_iter()
-                .map(|(_, idx)| {
-                    let f = optimum_of(model, idx, grid, k).ok();
-                    progress(done.fetch_add(1, Ordering::Relaxed) + 1);
-                    f
-                })
-                .collect();
-            for ((item, _), f) in work.into_iter().zip(found) {
-                self.todo.pop();
-                self.record(item, f);
-            }
+    /// Computes up to `count` resampled extractions at once (on all cores
+    /// with `parallel`); returns whether all are done.
+    pub fn step_par(&mut self, count: usize) -> bool {
+        if let Some((item, mut part)) = self.current.take() {
+            while !part.step(usize::MAX) {}
+            let found = part.finish(self.k).ok();
+            self.record(item, found);
         }
-        while !self.step() {
+        let take = count.min(self.todo.len());
+        let items: Vec<Item> = self.todo.iter().rev().take(take).copied().collect();
+        let work: Vec<(Item, Vec<usize>)> =
+            items.iter().map(|&it| (it, self.indices(it))).collect();
+        let (model, grid, k) = (&self.model, self.grid, self.k);
+        let one = |idx: &Vec<usize>| optimum_of(model, idx, grid, k).ok();
+        #[cfg(feature = "parallel")]
+        let found: Vec<Option<SubOptimum>> = {
+            use rayon::prelude::*;
+            work.par_iter().map(|(_, idx)| one(idx)).collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let found: Vec<Option<SubOptimum>> = work.iter().map(|(_, idx)| one(idx)).collect();
+        for ((item, _), f) in work.into_iter().zip(found) {
+            self.todo.pop();
+            self.record(item, f);
+        }
+        self.is_done()
+    }
+
+    /// Computes every remaining part (on all cores with `parallel`),
+    /// calling `progress(done)` after each batch.
+    pub fn run(&mut self, progress: &(dyn Fn(usize) + Sync)) {
+        // Batches of a few per core keep the cores busy and report often.
+        let batch = 4 * std::thread::available_parallelism().map_or(1, |n| n.get());
+        while !self.step_par(batch) {
             progress(self.done);
         }
+        progress(self.done);
     }
 }

@@ -29,16 +29,42 @@ pub struct SubOptimum {
 /// The extraction (grid minimum on `grid`, refined by Nelder-Mead) of the
 /// model of the demos at `indices` (repeats allowed).
 pub fn optimum_of(model: &Model, indices: &[usize], grid: Grid, k: f64) -> Result<SubOptimum> {
-    let sub = Arc::new(model.subset(indices)?);
-    let mut job = LandscapeJob::new(sub.clone(), grid, FillOrder::Raster)?;
-    while !job.step_par(usize::MAX) {}
-    let x = extract(&sub, job.landscape(), k)?;
-    Ok(SubOptimum {
-        dm: x.eval.dm,
-        km: x.eval.km,
-        j: x.j,
-        on_edge: x.on_edge(),
-    })
+    let mut part = SubExtraction::new(model, indices, grid)?;
+    while !part.landscape.step_par(usize::MAX) {}
+    part.finish(k)
+}
+
+/// One resampled extraction in steps (the browser slices it): the subset's
+/// landscape, filled point by point, then its refined minimum.
+pub struct SubExtraction {
+    model: Arc<Model>,
+    landscape: LandscapeJob,
+}
+
+impl SubExtraction {
+    /// The extraction of the demos at `indices` on `grid`, not started.
+    pub fn new(model: &Model, indices: &[usize], grid: Grid) -> Result<Self> {
+        let model = Arc::new(model.subset(indices)?);
+        let landscape = LandscapeJob::new(model.clone(), grid, FillOrder::Raster)?;
+        Ok(Self { model, landscape })
+    }
+
+    /// Computes up to `max_points` points; returns whether the landscape is
+    /// complete.
+    pub fn step(&mut self, max_points: usize) -> bool {
+        self.landscape.step(max_points)
+    }
+
+    /// The refined minimum of J for `k` on the complete landscape.
+    pub fn finish(&self, k: f64) -> Result<SubOptimum> {
+        let x = extract(&self.model, self.landscape.landscape(), k)?;
+        Ok(SubOptimum {
+            dm: x.eval.dm,
+            km: x.eval.km,
+            j: x.j,
+            on_edge: x.on_edge(),
+        })
+    }
 }
 
 /// The demos without demo `left`, in order.
