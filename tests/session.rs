@@ -9,7 +9,7 @@ use dmpscope::session::{Command, Runner, Session, Settings, Source, StageRuns, S
 use dmpscope_core::group::Grouping;
 use dmpscope_core::io::UpAxis;
 use serde_json::Value;
-use support::{dmpscope, rosbag2_folder, text, tmp_path};
+use support::{dmpscope, repo, rosbag2_folder, text, tmp_path};
 
 fn session_on(sources: Vec<Source>, settings: &Settings) -> Session {
     let mut s = Session::new(Runner::inline());
@@ -19,13 +19,14 @@ fn session_on(sources: Vec<Source>, settings: &Settings) -> Session {
 }
 
 /// What changed in the stage counters between two readings.
-fn delta(before: StageRuns, after: StageRuns) -> [usize; 7] {
+fn delta(before: StageRuns, after: StageRuns) -> [usize; 8] {
     [
         after.loads - before.loads,
         after.groupings - before.groupings,
         after.models - before.models,
         after.landscapes - before.landscapes,
         after.extractions - before.extractions,
+        after.diagnostics - before.diagnostics,
         after.tables - before.tables,
         after.points - before.points,
     ]
@@ -38,8 +39,8 @@ fn each_setting_recomputes_exactly_its_stages() {
     assert_eq!(session.status(), Status::Ready);
     assert!(session.extraction().is_some());
     assert_eq!(session.model().map(|m| m.demos().len()), Some(10));
-    //                                  loads group model land  extr table point
-    let check = |session: &mut Session, settings: &Settings, expect: [usize; 7], what: &str| {
+    //                                  loads group model land  extr diag table point
+    let check = |session: &mut Session, settings: &Settings, expect: [usize; 8], what: &str| {
         let before = session.runs();
         session.update(settings);
         assert_eq!(delta(before, session.runs()), expect, "{what}");
@@ -48,36 +49,61 @@ fn each_setting_recomputes_exactly_its_stages() {
     check(
         &mut session,
         &settings,
-        [0, 0, 0, 0, 0, 0, 0],
+        [0, 0, 0, 0, 0, 0, 0, 0],
         "nothing changed",
     );
     settings.op = (12.0, 34.0);
     check(
         &mut session,
         &settings,
-        [0, 0, 0, 0, 0, 0, 1],
+        [0, 0, 0, 0, 0, 0, 0, 1],
         "the operating point",
     );
     settings.k = 5.0;
-    check(&mut session, &settings, [0, 0, 0, 0, 1, 0, 0], "k");
+    check(&mut session, &settings, [0, 0, 0, 0, 1, 1, 0, 0], "k");
+    settings.diagnostics.bootstrap = 12;
+    check(
+        &mut session,
+        &settings,
+        [0, 0, 0, 0, 0, 1, 0, 0],
+        "the bootstrap",
+    );
+    settings.a_peak_limit = Some(50.0);
+    check(
+        &mut session,
+        &settings,
+        [0, 0, 0, 0, 0, 0, 0, 0],
+        "an a_peak limit",
+    );
+    assert!(session.constrained().is_some());
     settings.set_grid_points(9);
-    check(&mut session, &settings, [0, 0, 0, 1, 1, 0, 0], "the grid");
+    check(
+        &mut session,
+        &settings,
+        [0, 0, 0, 1, 1, 1, 0, 0],
+        "the grid",
+    );
     settings.grid.km.hi = 2000.0;
     check(
         &mut session,
         &settings,
-        [0, 0, 0, 1, 1, 0, 0],
+        [0, 0, 0, 1, 1, 1, 0, 0],
         "the K/M range",
     );
     settings.prep.sg_window = 23;
     check(
         &mut session,
         &settings,
-        [0, 0, 1, 1, 1, 1, 1],
+        [0, 0, 1, 1, 1, 1, 1, 1],
         "the SG window",
     );
     settings.dmp.basis_functions = 60;
-    check(&mut session, &settings, [0, 0, 1, 1, 1, 1, 1], "the basis");
+    check(
+        &mut session,
+        &settings,
+        [0, 0, 1, 1, 1, 1, 1, 1],
+        "the basis",
+    );
     session.apply(Command::SetIncluded {
         demo: 3,
         included: false,
@@ -85,7 +111,7 @@ fn each_setting_recomputes_exactly_its_stages() {
     check(
         &mut session,
         &settings,
-        [0, 0, 1, 1, 1, 1, 1],
+        [0, 0, 1, 1, 1, 1, 1, 1],
         "an excluded demo",
     );
     assert_eq!(session.model().map(|m| m.demos().len()), Some(9));
@@ -93,14 +119,14 @@ fn each_setting_recomputes_exactly_its_stages() {
     check(
         &mut session,
         &settings,
-        [0, 1, 1, 1, 1, 1, 1],
+        [0, 1, 1, 1, 1, 1, 1, 1],
         "what a demo is",
     );
     settings.load.demos = Grouping::PerTopic;
     check(
         &mut session,
         &settings,
-        [0, 1, 1, 1, 1, 1, 1],
+        [0, 1, 1, 1, 1, 1, 1, 1],
         "back to topics",
     );
     // The excluded demo stays excluded across the regrouping.
@@ -109,7 +135,7 @@ fn each_setting_recomputes_exactly_its_stages() {
     check(
         &mut session,
         &settings,
-        [1, 1, 1, 1, 1, 1, 1],
+        [1, 1, 1, 1, 1, 1, 1, 1],
         "the up axis",
     );
     // The sample has no TF frames: the filter reads the file again, but
@@ -118,17 +144,17 @@ fn each_setting_recomputes_exactly_its_stages() {
     check(
         &mut session,
         &settings,
-        [1, 1, 0, 0, 0, 0, 0],
+        [1, 1, 0, 0, 0, 0, 0, 0],
         "the frame filter",
     );
     // Whatever set them: a whole new settings value (an imported file, a
     // reset) is compared the same way.
     let reset = Settings::with_grid_points(9);
-    check(&mut session, &reset, [1, 1, 1, 1, 1, 1, 1], "a reset");
+    check(&mut session, &reset, [1, 1, 1, 1, 1, 1, 1, 1], "a reset");
     check(
         &mut session,
         &reset.clone(),
-        [0, 0, 0, 0, 0, 0, 0],
+        [0, 0, 0, 0, 0, 0, 0, 0],
         "the same values again",
     );
 }
@@ -225,4 +251,90 @@ fn a_folder_without_usable_demos_says_so_and_what_to_do() {
         Status::NoUsableDemo(why) => assert!(why.contains("/aborted"), "{why}"),
         other => panic!("expected no usable demo, got {other:?}"),
     }
+}
+
+#[test]
+fn the_diagnostics_match_the_cli_and_reach_the_report() {
+    let planted = repo().join("assets/planted8.mcap");
+    let result = dmpscope(&[
+        "extract",
+        planted.to_str().expect("path"),
+        "--grid",
+        "16",
+        "--bootstrap",
+        "12",
+        "--diag-grid",
+        "8",
+        "--json",
+    ]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    let cli: Value = serde_json::from_slice(&result.stdout).expect("json");
+
+    let mut settings = Settings::with_grid_points(16);
+    settings.diagnostics.bootstrap = 12;
+    settings.diagnostics.grid_points = 8;
+    let session = session_on(vec![Source::planted_sample()], &settings);
+    let d = session.diagnostics().expect("diagnostics");
+    assert!(d.complete() && !session.busy());
+    assert_eq!(
+        serde_json::to_value(&d.diagnostics).expect("json"),
+        cli["diagnostics"]
+    );
+    assert_eq!(d.cloud.len(), 12);
+    let report = serde_json::to_value(session.report().expect("report")).expect("json");
+    assert_eq!(report["diagnostics"], cli["diagnostics"]);
+    // The shares at the operating point sum to one, one per demo.
+    let shares = session.point_shares().expect("shares");
+    assert_eq!(shares.len(), 8);
+    assert!((shares.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+    let terms = session.forcing_terms().expect("forcing terms");
+    assert_eq!(terms.f.len(), 8);
+    assert!(terms.sigma.iter().all(|v| v.is_finite()));
+}
+
+#[test]
+fn a_peak_limit_gives_a_constrained_optimum_or_says_none_is_within() {
+    let mut settings = Settings::with_grid_points(12);
+    settings.diagnostics.bootstrap = 4;
+    let mut session = session_on(vec![Source::planted_sample()], &settings);
+    let x = session.extraction().expect("optimum").clone();
+    let free_peak = x.eval.a_peak.iter().copied().fold(0.0, f64::max);
+    let land = &session.shown().expect("landscape").snapshot.landscape;
+    let lowest = land.a_peak.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(
+        lowest < free_peak,
+        "the limit must bind: {lowest} vs {free_peak}"
+    );
+    let limit = 0.5 * (lowest + free_peak);
+    settings.a_peak_limit = Some(limit);
+    session.update(&settings);
+    let c = session.constrained().expect("computed").expect("within");
+    let model = session.model().expect("model");
+    let e = model.evaluate(c.dm, c.km);
+    let peak = e.a_peak.iter().copied().fold(0.0, f64::max);
+    assert!(peak <= limit, "{peak} > {limit}");
+    assert!(c.value >= x.j, "a constraint cannot lower J");
+    settings.a_peak_limit = Some(1e-9);
+    session.update(&settings);
+    assert_eq!(session.constrained(), Some(None));
+    settings.a_peak_limit = None;
+    session.update(&settings);
+    assert_eq!(session.constrained(), None);
+}
+
+#[test]
+fn a_sample_replaces_samples_but_never_the_users_recordings() {
+    let settings = Settings::with_grid_points(6);
+    let mut session = session_on(vec![Source::sample()], &settings);
+    assert_eq!(session.demos().len(), 10);
+    session.apply(Command::OpenSample(Source::planted_sample()));
+    session.update(&settings);
+    assert_eq!(session.sources().count(), 1);
+    assert_eq!(session.demos().len(), 8);
+    let user = repo().join("assets/reach10.mcap");
+    let mut session = session_on(vec![Source::Path(user)], &settings);
+    session.apply(Command::OpenSample(Source::planted_sample()));
+    session.update(&settings);
+    assert_eq!(session.sources().count(), 2);
+    assert_eq!(session.demos().len(), 18);
 }

@@ -201,3 +201,22 @@ pub fn extract(model: &Model, landscape: &Landscape, k: f64) -> Result<Extractio
         converged: r.converged,
     })
 }
+
+/// The least J for `k` among the gains whose largest peak acceleration (any
+/// demo) stays within `limit` m/s^2 (method.md section 9): the grid minimum
+/// of J over the points within the limit, refined by Nelder-Mead with the
+/// points beyond it costing infinity. `None` when no grid point is within
+/// the limit.
+pub fn constrained(model: &Model, landscape: &Landscape, k: f64, limit: f64) -> Option<Refined> {
+    let masked: Vec<f64> = landscape
+        .j(k)
+        .iter()
+        .zip(&landscape.a_peak)
+        .map(|(&j, &a)| if a <= limit { j } else { f64::NAN })
+        .collect();
+    refine(landscape, &masked, |dm, km| {
+        let e = model.evaluate(dm, km);
+        let a = e.a_peak.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if a <= limit { e.j(k) } else { f64::INFINITY }
+    })
+}

@@ -11,6 +11,10 @@ use super::sources::Source;
 pub enum Command {
     /// Open recordings (a drop, a dialog, the command line).
     AddSources(Vec<Source>),
+    /// Open a bundled sample: it replaces what is open when that is only
+    /// bundled samples, and is added to the user's recordings otherwise
+    /// (nothing the user opened is closed).
+    OpenSample(Source),
     /// Include or exclude demo `demo` (an index into `Session::demos`).
     SetIncluded {
         /// The demo.

@@ -14,8 +14,11 @@
 //! demos + included + preprocessing + DMP      -> the model
 //! model + grid                                -> the landscape (a job)
 //! landscape + k                               -> the extraction (a job, one at a time)
+//! extraction + diagnostics settings           -> the diagnostics (a job, progressive)
+//! extraction + a_peak limit                   -> the constrained optimum (a job)
 //! model + k                                   -> the paper's rows of Table I
-//! model + operating point (+ k for its J)     -> the operating point's paths (and row)
+//! model + operating point (+ k for its J)     -> the operating point's paths (and row),
+//!                                                its forcing terms and S shares
 //! model                                       -> the RL run stays or goes
 //! ```
 //!
@@ -24,6 +27,7 @@
 //! drive the session synchronously, without egui and without sleeps.
 
 mod commands;
+pub mod diagnostics;
 pub mod jobs;
 pub mod landscape;
 pub mod messages;
@@ -36,9 +40,12 @@ mod status;
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
+use dmpscope_core::extract::Refined;
+use dmpscope_core::similarity::Standardised;
 use dmpscope_core::{DemoInfo, Extraction, Model, Notice, RawDemo, Report, Rollout, TableRow};
 
 pub use commands::Command;
+pub use diagnostics::DiagSnapshot;
 pub use jobs::{PageTime, Runner};
 pub use landscape::{Shown, Snapshot};
 pub use rl::{Progress as RlProgress, RlRequest};
@@ -48,7 +55,10 @@ pub use status::Status;
 
 use messages::Messages;
 use sources::SourceSlot;
-use stages::{ExtractionState, LandscapeState, ModelState, PointState, PresetState, RlState};
+use stages::{
+    ConstrainedState, DiagState, ExtractionState, LandscapeState, ModelState, PointState,
+    PresetState, RlState,
+};
 
 /// A demo in the demos list.
 #[derive(Clone, Debug, PartialEq)]
@@ -76,6 +86,8 @@ pub struct StageRuns {
     pub landscapes: usize,
     /// Extractions started.
     pub extractions: usize,
+    /// Diagnostics started.
+    pub diagnostics: usize,
     /// The paper's gains evaluated (once per model: their rows follow
     /// any k).
     pub tables: usize,
@@ -97,6 +109,8 @@ pub struct Session {
     model: Option<ModelState>,
     landscape: Option<LandscapeState>,
     extraction: Option<ExtractionState>,
+    diagnostics: Option<DiagState>,
+    constrained: Option<ConstrainedState>,
     presets: Option<PresetState>,
     /// The k of the last update (Table I's rows are made for it).
     k: f64,
@@ -119,6 +133,8 @@ impl Session {
             model: None,
             landscape: None,
             extraction: None,
+            diagnostics: None,
+            constrained: None,
             presets: None,
             k: dmpscope_core::DEFAULT_K,
             point: None,
@@ -139,6 +155,15 @@ impl Session {
         match command {
             Command::AddSources(sources) => {
                 self.slots.extend(sources.into_iter().map(SourceSlot::new));
+            }
+            Command::OpenSample(sample) => {
+                if self.slots.iter().all(|s| s.source.is_sample()) {
+                    self.slots.clear();
+                    self.demos.clear();
+                    self.excluded.clear();
+                    self.demos_version = self.next_id();
+                }
+                self.slots.push(SourceSlot::new(sample));
             }
             Command::SetIncluded { demo, included } => {
                 if let Some(d) = self.demos.get_mut(demo) {
@@ -184,6 +209,8 @@ impl Session {
         self.update_model(settings);
         self.update_landscape(settings);
         self.update_extraction(settings);
+        self.update_diagnostics(settings);
+        self.update_constrained(settings);
         self.update_presets();
         self.update_point(settings);
         self.update_rl();
@@ -249,6 +276,36 @@ impl Session {
         self.extraction.as_ref().is_some_and(|x| x.job.is_some())
     }
 
+    /// The diagnostics of the extraction so far (`None` until it is known).
+    pub fn diagnostics(&self) -> Option<&DiagSnapshot> {
+        self.diagnostics.as_ref().and_then(|d| d.snapshot.as_ref())
+    }
+
+    /// Whether the diagnostics are being computed.
+    pub fn diagnosing(&self) -> bool {
+        self.diagnostics.as_ref().is_some_and(|d| d.job.is_some())
+    }
+
+    /// The optimum under the a_peak limit: `None` without a limit or until
+    /// computed, `Some(None)` when no gains are within it.
+    pub fn constrained(&self) -> Option<Option<&Refined>> {
+        self.constrained
+            .as_ref()
+            .and_then(|c| c.result.as_ref().map(Option::as_ref))
+    }
+
+    /// Every demo's standardised forcing term and sigma_f at the operating
+    /// point.
+    pub fn forcing_terms(&self) -> Option<&Standardised> {
+        self.point.as_ref().map(|p| &p.standardised)
+    }
+
+    /// Each model demo's share of S at the operating point (`None` with
+    /// one demo).
+    pub fn point_shares(&self) -> Option<&[f64]> {
+        self.point.as_ref().and_then(|p| p.shares.as_deref())
+    }
+
     /// Table I for the k of the last update: extracted (when known), the
     /// paper's gains, the operating point.
     pub fn table_rows(&self) -> Vec<TableRow> {
@@ -273,16 +330,17 @@ impl Session {
         rows
     }
 
-    /// The report of the current model, extraction and Table I (the app's
-    /// JSON, CSV and Markdown exports), for the k of the last update.
+    /// The report of the current model, extraction, diagnostics (once
+    /// complete) and Table I (the app's JSON, CSV and Markdown exports),
+    /// for the k of the last update.
     pub fn report(&self) -> Option<Report> {
         let model = self.model()?;
-        Some(Report::with_rows(
-            model,
-            self.extraction(),
-            self.k,
-            self.table_rows(),
-        ))
+        let report = Report::with_rows(model, self.extraction(), self.k, self.table_rows());
+        // The diagnostics once complete (a partial bootstrap is no summary).
+        Some(match self.diagnostics().filter(|d| d.complete()) {
+            Some(d) => report.with_diagnostics(d.diagnostics.clone(), d.about.clone()),
+            None => report,
+        })
     }
 
     /// Why the extraction failed, if it did.
@@ -310,6 +368,7 @@ impl Session {
         self.loading()
             || self.landscape_running()
             || self.extracting()
+            || self.diagnosing()
             || self.rl.as_ref().is_some_and(|r| r.job.is_some())
     }
 

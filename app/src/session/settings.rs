@@ -3,6 +3,7 @@
 //! preprocessing, the DMP and the grid, so the app has every option the CLI
 //! has and every default is the core's.
 
+use dmpscope_core::diagnostics::DiagSettings;
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::io::LoadOptions;
 use dmpscope_core::landscape::{AxisScale, Grid};
@@ -28,6 +29,11 @@ pub struct Settings {
     pub op: (f64, f64),
     /// Colour heat maps on a log scale.
     pub log_colour: bool,
+    /// How the diagnostics are computed (resampled grid, bootstrap).
+    pub diagnostics: DiagSettings,
+    /// The largest peak acceleration allowed, m/s^2 (masks the J map and
+    /// gives the constrained optimum); `None`: no limit.
+    pub a_peak_limit: Option<f64>,
 }
 
 impl Default for Settings {
@@ -43,6 +49,8 @@ impl Default for Settings {
             k: DEFAULT_K,
             op,
             log_colour: true,
+            diagnostics: DiagSettings::default(),
+            a_peak_limit: None,
         }
     }
 }

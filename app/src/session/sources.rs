@@ -38,6 +38,41 @@ impl Source {
         }
     }
 
+    /// The bundled planted-gain sample: 8 demos integrated from one DMP
+    /// at the paper's gains 10.73 / 20.71, 0.1 mm noise (`dmpscope
+    /// gen-sample --planted`), on which the method recovers the gains.
+    pub fn planted_sample() -> Self {
+        static SAMPLE: &[u8] = include_bytes!("../../../assets/planted8.mcap");
+        Self::Bytes {
+            name: "planted8.mcap".into(),
+            bytes: Arc::from(SAMPLE),
+        }
+    }
+
+    /// The bundled samples: their names and what they show.
+    pub fn samples() -> [(Self, &'static str); 2] {
+        [
+            (
+                Self::sample(),
+                "reach10: 10 tracked reaches, some hesitating (the optimum is on the box edge)",
+            ),
+            (
+                Self::planted_sample(),
+                "planted8: 8 demos from one DMP at D/M 10.73, K/M 20.71 (the method recovers them)",
+            ),
+        ]
+    }
+
+    /// Whether this is one of the bundled samples (its name and bytes).
+    pub fn is_sample(&self) -> bool {
+        let Self::Bytes { name, bytes } = self else {
+            return false;
+        };
+        Self::samples().iter().any(|(sample, _)| {
+            matches!(sample, Self::Bytes { name: n, bytes: b } if n == name && b == bytes)
+        })
+    }
+
     /// The name shown for the source.
     pub fn name(&self) -> String {
         match self {

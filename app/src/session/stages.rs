@@ -12,6 +12,11 @@ use dmpscope_core::{
     Extraction, Level, Model, PointEval, PrepSettings, Rollout, Unusable, build_model, extract,
 };
 
+use dmpscope_core::diagnostics::DiagSettings;
+use dmpscope_core::extract::{Refined, constrained};
+use dmpscope_core::similarity::Standardised;
+
+use super::diagnostics::{DiagSnapshot, DiagnosticsWork};
 use super::jobs::{Job, Once, Update};
 use super::landscape::{LandscapeWork, Shown, Snapshot};
 use super::rl::{Progress as RlProgress, RlRequest, RlWork};
@@ -44,6 +49,21 @@ pub(super) struct PointKey {
     pub(super) model: u64,
     pub(super) dm: u64,
     pub(super) km: u64,
+}
+
+/// The diagnostics: the extraction they are of and how they are made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct DiagKey {
+    pub(super) extraction: ExtractionKey,
+    pub(super) settings: DiagSettings,
+}
+
+/// The constrained optimum: the extraction's landscape and k, and the
+/// a_peak limit's bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct ConstrainedKey {
+    pub(super) extraction: ExtractionKey,
+    pub(super) limit: u64,
 }
 
 pub(super) struct ModelState {
@@ -83,6 +103,23 @@ pub(super) struct PointState {
     pub(super) key: PointKey,
     pub(super) eval: PointEval,
     pub(super) paths: Vec<Rollout>,
+    /// Every demo's standardised forcing term and sigma_f there.
+    pub(super) standardised: Standardised,
+    /// Each demo's share of S there (`None` with one demo).
+    pub(super) shares: Option<Vec<f64>>,
+}
+
+pub(super) struct DiagState {
+    pub(super) key: DiagKey,
+    pub(super) job: Option<Job<DiagSnapshot>>,
+    pub(super) snapshot: Option<DiagSnapshot>,
+}
+
+pub(super) struct ConstrainedState {
+    pub(super) key: ConstrainedKey,
+    pub(super) job: Option<Job<Option<Refined>>>,
+    /// `Some(None)`: no gains within the limit.
+    pub(super) result: Option<Option<Refined>>,
 }
 
 pub(super) struct RlState {
@@ -294,6 +331,119 @@ impl Session {
         }
     }
 
+    /// The diagnostics of the current extraction, recomputed when it or the
+    /// diagnostics' settings change (gone while k is dragged).
+    pub(super) fn update_diagnostics(&mut self, settings: &Settings) {
+        let Some((model, _)) = self.model_and_version() else {
+            self.diagnostics = None;
+            return;
+        };
+        let ready = self.extraction.as_ref().and_then(|x| {
+            let found = x.result.as_ref()?;
+            let landscape = &self.landscape.as_ref()?.shown.as_ref()?.snapshot.landscape;
+            Some((x.key, found, landscape))
+        });
+        let Some((extraction, found, landscape)) = ready else {
+            self.diagnostics = None;
+            return;
+        };
+        let key = DiagKey {
+            extraction,
+            settings: settings.diagnostics,
+        };
+        if self.diagnostics.as_ref().is_none_or(|d| d.key != key) {
+            let work = DiagnosticsWork::new(
+                model,
+                landscape.clone(),
+                found.clone(),
+                settings.diagnostics,
+                self.runner.threaded(),
+            );
+            self.runs.diagnostics += 1;
+            let mut job = self.runner.start("the diagnostics", work);
+            if let Some(n) = job.take_notice() {
+                self.messages.say(Level::Warning, n);
+            }
+            self.diagnostics = Some(DiagState {
+                key,
+                job: Some(job),
+                snapshot: None,
+            });
+        }
+        let Some(d) = &mut self.diagnostics else {
+            return;
+        };
+        match d.job.as_mut().and_then(Job::poll) {
+            Some(Update::Progress(s)) => d.snapshot = Some(s),
+            Some(Update::Done(s)) => {
+                d.snapshot = Some(s);
+                d.job = None;
+            }
+            Some(Update::Failed(e)) => {
+                d.job = None;
+                self.messages
+                    .say(Level::Error, format!("the diagnostics: {e}"));
+            }
+            None => {}
+        }
+    }
+
+    /// The optimum under the a_peak limit, when one is set.
+    pub(super) fn update_constrained(&mut self, settings: &Settings) {
+        let limit = settings.a_peak_limit.filter(|l| l.is_finite() && *l > 0.0);
+        let (Some(limit), Some(x), Some((model, _))) =
+            (limit, &self.extraction, self.model_and_version())
+        else {
+            self.constrained = None;
+            return;
+        };
+        if !self.landscape_complete() {
+            self.constrained = None;
+            return;
+        }
+        let key = ConstrainedKey {
+            extraction: x.key,
+            limit: limit.to_bits(),
+        };
+        if let Some(c) = &mut self.constrained
+            && c.key != key
+        {
+            // One at a time while the limit is dragged (as the extraction).
+            c.result = None;
+            if let Some(job) = &mut c.job {
+                match job.poll() {
+                    None | Some(Update::Progress(_)) => return,
+                    Some(_) => c.job = None,
+                }
+            }
+        }
+        if self.constrained.as_ref().is_none_or(|c| c.key != key) {
+            let Some(shown) = self.shown() else { return };
+            let (landscape, k) = (shown.snapshot.landscape.clone(), settings.k);
+            let work = Once::new(move || constrained(&model, &landscape, k, limit));
+            self.constrained = Some(ConstrainedState {
+                key,
+                job: Some(self.runner.start("the constrained optimum", work)),
+                result: None,
+            });
+        }
+        let Some(c) = &mut self.constrained else {
+            return;
+        };
+        match c.job.as_mut().and_then(Job::poll) {
+            Some(Update::Done(found)) => {
+                c.result = Some(found);
+                c.job = None;
+            }
+            Some(Update::Failed(e)) => {
+                c.job = None;
+                self.messages
+                    .say(Level::Error, format!("the constrained optimum: {e}"));
+            }
+            Some(Update::Progress(_)) | None => {}
+        }
+    }
+
     /// The paper's gains on the model: evaluated once per model, their
     /// rows made for the current k when asked ([`Session::table_rows`]).
     pub(super) fn update_presets(&mut self) {
@@ -333,7 +483,16 @@ impl Session {
             let paths = (0..model.demos().len())
                 .map(|i| model.rollout(i, dm, km))
                 .collect();
-            self.point = Some(PointState { key, eval, paths });
+            let similarity = model.similarity();
+            let standardised = similarity.standardised(dm, km);
+            let shares = similarity.shares(dm, km);
+            self.point = Some(PointState {
+                key,
+                eval,
+                paths,
+                standardised,
+                shares,
+            });
         }
     }
 

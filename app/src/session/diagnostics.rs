@@ -1,0 +1,136 @@
+//! The diagnostics of the extraction as a [`Work`] (method.md section 9):
+//! the core's [`DiagnosticsJob`] made in its first step (depth, balance,
+//! shares, the S minimum), then its resampled extractions (leave-one-out,
+//! bootstrap) a batch per step natively and a few landscape points per step
+//! in the browser, each step publishing a [`DiagSnapshot`] for the views to
+//! show as results come. The constrained optimum (J under an a_peak limit)
+//! is a one-step work beside it.
+
+use std::sync::Arc;
+
+use dmpscope_core::diagnostics::{
+    DiagAbout, DiagSettings, Diagnostics, DiagnosticsJob, SubOptimum,
+};
+use dmpscope_core::landscape::Landscape;
+use dmpscope_core::{Extraction, Model};
+use web_time::{Duration, Instant};
+
+use super::jobs::{Step, Work};
+
+/// Landscape points per step in the browser (a slice holds several).
+const SLICE_POINTS: usize = 48;
+/// Compute time between previews on the page's thread (a frame under
+/// software WebGL costs about 200 ms).
+const PREVIEW_EVERY: Duration = Duration::from_millis(300);
+
+/// The diagnostics so far.
+#[derive(Clone, Debug)]
+pub struct DiagSnapshot {
+    /// The diagnostics (leave-one-out optima and the bootstrap fill in).
+    pub diagnostics: Diagnostics,
+    /// How they are made (the resampled extractions' grid, notes).
+    pub about: DiagAbout,
+    /// The bootstrap optima found so far (the cloud on the J map).
+    pub cloud: Vec<SubOptimum>,
+    /// Resampled extractions done.
+    pub done: usize,
+    /// Resampled extractions in all.
+    pub total: usize,
+}
+
+impl DiagSnapshot {
+    /// Whether every part is computed.
+    pub fn complete(&self) -> bool {
+        self.done == self.total
+    }
+}
+
+/// What the first step builds the job from.
+struct Pending {
+    model: Arc<Model>,
+    landscape: Landscape,
+    extraction: Extraction,
+    settings: DiagSettings,
+}
+
+/// Computes the diagnostics in steps.
+pub struct DiagnosticsWork {
+    pending: Option<Pending>,
+    job: Option<DiagnosticsJob>,
+    threaded: bool,
+    since_preview: Duration,
+}
+
+impl DiagnosticsWork {
+    /// The diagnostics of `extraction` on `landscape` (complete) of `model`;
+    /// `threaded` when the work has a thread of its own.
+    pub fn new(
+        model: Arc<Model>,
+        landscape: Landscape,
+        extraction: Extraction,
+        settings: DiagSettings,
+        threaded: bool,
+    ) -> Self {
+        Self {
+            pending: Some(Pending {
+                model,
+                landscape,
+                extraction,
+                settings,
+            }),
+            job: None,
+            threaded,
+            since_preview: Duration::ZERO,
+        }
+    }
+
+    fn snapshot(job: &DiagnosticsJob) -> DiagSnapshot {
+        let (done, total) = job.progress();
+        DiagSnapshot {
+            diagnostics: job.diagnostics().clone(),
+            about: job.about().clone(),
+            cloud: job.bootstrap_optima(),
+            done,
+            total,
+        }
+    }
+}
+
+impl Work for DiagnosticsWork {
+    type Output = DiagSnapshot;
+
+    fn step(&mut self) -> Step<DiagSnapshot> {
+        if let Some(p) = self.pending.take() {
+            let job = DiagnosticsJob::new(p.model, &p.landscape, &p.extraction, p.settings);
+            let snapshot = Self::snapshot(&job);
+            let done = job.is_done();
+            self.job = Some(job);
+            return if done {
+                Step::Done(snapshot)
+            } else {
+                Step::Publish(snapshot)
+            };
+        }
+        let Some(job) = &mut self.job else {
+            return Step::Working;
+        };
+        let start = Instant::now();
+        let done = if cfg!(target_arch = "wasm32") {
+            job.step_points(SLICE_POINTS)
+        } else {
+            // A couple of extractions per core per step: every core busy,
+            // a preview every ~50 ms.
+            let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+            job.step_par(2 * cores)
+        };
+        self.since_preview += start.elapsed();
+        if done {
+            Step::Done(Self::snapshot(job))
+        } else if self.threaded || self.since_preview >= PREVIEW_EVERY {
+            self.since_preview = Duration::ZERO;
+            Step::Publish(Self::snapshot(job))
+        } else {
+            Step::Working
+        }
+    }
+}
