@@ -133,6 +133,7 @@ impl DmpApp {
                     super::commands::Map::J => "dmpscope-J.png",
                     super::commands::Map::DSum => "dmpscope-sum-d.png",
                     super::commands::Map::S => "dmpscope-S.png",
+                    super::commands::Map::APeak => "dmpscope-a-peak.png",
                 };
                 (name, bytes)
             }
@@ -255,7 +256,11 @@ impl eframe::App for DmpApp {
         egui::CentralPanel::default().show(ui, |ui| {
             commands.extend(panels::central_ui(ui, session, s, view));
         });
+        let hover_moved = self.view.end_hover();
         let changed = !commands.is_empty() || self.settings != before;
+        if hover_moved {
+            ctx.request_repaint();
+        }
         for c in commands {
             self.run(c, &ctx);
         }

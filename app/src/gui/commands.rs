@@ -49,6 +49,8 @@ pub enum Map {
     DSum,
     /// S.
     S,
+    /// The largest peak acceleration of any demo.
+    APeak,
 }
 
 impl Map {
@@ -58,6 +60,7 @@ impl Map {
             Self::J => "J = S + k sum d",
             Self::DSum => "sum d [m]",
             Self::S => "S",
+            Self::APeak => "max a_peak [m/s²]",
         }
     }
 
@@ -67,6 +70,7 @@ impl Map {
             Self::J => &shown.j,
             Self::DSum => &shown.d_sum,
             Self::S => &shown.s,
+            Self::APeak => &shown.a_peak,
         }
     }
 }

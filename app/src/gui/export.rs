@@ -10,7 +10,7 @@ use super::heatmap::colour_image;
 /// The PNG of a map of `values` on `grid`, each grid point a square of
 /// pixels so the image is at least 512 pixels wide.
 pub fn heatmap_png(values: &[f64], grid: &Grid, log_colour: bool) -> Result<Vec<u8>, String> {
-    let (image, _) = colour_image(values, grid, log_colour);
+    let (image, _) = colour_image(values, grid, log_colour, None);
     png_of(&image, (512 / image.width().max(1)).max(1))
 }
 

@@ -1,7 +1,9 @@
 //! A heat map of one landscape quantity over (D/M, K/M): a texture (one
 //! texel per grid point, viridis, linear or log colour), axes, a colour bar,
-//! labelled markers, a hover read-out of sum d, S and J, and the operating
-//! point, which a click or drag moves.
+//! labelled markers, iso-zeta lines, a cloud of points (the bootstrap
+//! optima), points masked out (beyond an a_peak limit), a hover read-out of
+//! sum d, S, J and a_peak, and the operating point, which a click or drag
+//! moves.
 
 use dmpscope_core::landscape::{Axis, AxisScale, Grid};
 use eframe::egui::{
@@ -21,10 +23,13 @@ pub struct Marker {
     pub colour: Color32,
 }
 
+/// The damping ratios drawn as iso-zeta lines (`K/M = (D/M / 2 zeta)^2`).
+pub const ISO_ZETA: [f64; 3] = [0.5, 1.0, 2.0];
+
 /// The texture of one map, rebuilt only when its key changes.
 #[derive(Default)]
 pub struct Cache {
-    key: Option<(u64, u64, bool)>,
+    key: Option<(u64, u64, bool, u64)>,
     texture: Option<TextureHandle>,
     range: (f64, f64),
 }
@@ -41,9 +46,18 @@ pub struct MapInput<'a> {
     pub grid: Grid,
     /// Colour on a log scale.
     pub log_colour: bool,
-    /// Read-out of `(sum d, S, J)` at a grid point.
-    pub readout: &'a dyn Fn(usize, usize) -> (f64, f64, f64),
+    /// Read-out of `(sum d, S, J, a_peak)` at a grid point.
+    pub readout: &'a dyn Fn(usize, usize) -> [f64; 4],
+    /// Points to mask (grey): `(a_peak per point, limit)`, those above it.
+    pub mask: Option<(&'a [f64], f64)>,
+    /// Draw the iso-zeta lines.
+    pub iso_zeta: bool,
+    /// Small dots to draw (the bootstrap optima), `(D/M, K/M)`.
+    pub cloud: &'a [(f64, f64)],
 }
+
+/// The colour of masked points.
+const MASKED: Color32 = Color32::from_rgb(90, 70, 70);
 
 const AXIS_MARGIN: f32 = 44.0;
 const BAR_WIDTH: f32 = 14.0;
@@ -77,25 +91,37 @@ fn transform(v: f64, log: bool) -> f64 {
 }
 
 /// The map as an image (one pixel per grid point, D/M to the right, K/M
-/// up, viridis, NaN dark grey) and the colour range `(lo, hi)` (of ln v on
-/// a log colour scale).
-pub fn colour_image(values: &[f64], grid: &Grid, log_colour: bool) -> (ColorImage, (f64, f64)) {
+/// up, viridis, NaN dark grey, masked points reddish grey) and the colour
+/// range `(lo, hi)` of the points not masked (of ln v on a log colour
+/// scale).
+pub fn colour_image(
+    values: &[f64],
+    grid: &Grid,
+    log_colour: bool,
+    mask: Option<(&[f64], f64)>,
+) -> (ColorImage, (f64, f64)) {
     let (n_dm, n_km) = (grid.dm.n, grid.km.n);
+    let masked = |idx: usize| mask.is_some_and(|(a, limit)| a.get(idx).is_some_and(|&a| a > limit));
     let t: Vec<f64> = values.iter().map(|&v| transform(v, log_colour)).collect();
     let (lo, hi) = t
         .iter()
-        .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+        .enumerate()
+        .filter(|(i, v)| v.is_finite() && !masked(*i))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (_, &v)| {
             (a.min(v), b.max(v))
         });
     let span = if hi > lo { hi - lo } else { 1.0 };
     let mut pixels = vec![Color32::from_gray(40); n_dm * n_km];
     for i in 0..n_dm {
         for j in 0..n_km {
-            let v = t.get(i * n_km + j).copied().unwrap_or(f64::NAN);
-            if v.is_finite() {
-                // x = D/M index, y = K/M index from the top (high K/M up).
-                pixels[(n_km - 1 - j) * n_dm + i] = colour((v - lo) / span);
+            let idx = i * n_km + j;
+            let v = t.get(idx).copied().unwrap_or(f64::NAN);
+            // x = D/M index, y = K/M index from the top (high K/M up).
+            let pixel = &mut pixels[(n_km - 1 - j) * n_dm + i];
+            if masked(idx) {
+                *pixel = MASKED;
+            } else if v.is_finite() {
+                *pixel = colour((v - lo) / span);
             }
         }
     }
@@ -103,7 +129,7 @@ pub fn colour_image(values: &[f64], grid: &Grid, log_colour: bool) -> (ColorImag
 }
 
 fn build(ctx: &egui::Context, input: &MapInput<'_>) -> (TextureHandle, (f64, f64)) {
-    let (image, range) = colour_image(input.values, &input.grid, input.log_colour);
+    let (image, range) = colour_image(input.values, &input.grid, input.log_colour, input.mask);
     let texture = ctx.load_texture(input.title, image, TextureOptions::NEAREST);
     (texture, range)
 }
@@ -147,7 +173,8 @@ pub fn show(
     op: &mut (f64, f64),
     side: f32,
 ) -> bool {
-    let key = (input.key.0, input.key.1, input.log_colour);
+    let mask_key = input.mask.map_or(0, |(_, limit)| limit.to_bits());
+    let key = (input.key.0, input.key.1, input.log_colour, mask_key);
     if cache.key != Some(key) || cache.texture.is_none() {
         let (texture, range) = build(ui.ctx(), input);
         cache.texture = Some(texture);
@@ -253,6 +280,12 @@ pub fn show(
             text,
         );
     }
+    if input.iso_zeta {
+        iso_zeta(&painter, &grid, &to_screen, map, &font);
+    }
+    for &(dm, km) in input.cloud {
+        painter.circle_filled(to_screen(dm, km), 2.0, Color32::from_rgb(255, 200, 120));
+    }
     for m in markers {
         let p = to_screen(m.dm, m.km);
         painter.circle_stroke(p, 4.0, Stroke::new(1.5, m.colour));
@@ -275,9 +308,10 @@ pub fn show(
     if let Some(pos) = response.hover_pos() {
         let (dm, km) = at(pos);
         let (i, j) = (nearest(&grid.dm, dm), nearest(&grid.km, km));
-        let (d, s, jv) = (input.readout)(i, j);
+        let [d, s, jv, a] = (input.readout)(i, j);
+        let zeta = dmpscope_core::model::zeta(dm, km);
         response.clone().on_hover_text_at_pointer(format!(
-            "D/M {dm:.3}  K/M {km:.3}\nsum d {d:.5} m\nS {s:.5}\nJ {jv:.5}"
+            "D/M {dm:.3}  K/M {km:.3}  zeta {zeta:.3}\nsum d {d:.5} m\nS {s:.5}\nJ {jv:.5}\nmax a_peak {a:.3} m/s²"
         ));
     }
     if (response.dragged() || response.clicked())
@@ -287,6 +321,58 @@ pub fn show(
         return true;
     }
     false
+}
+
+/// The iso-zeta lines `K/M = (D/M / (2 zeta))^2` across the map, each
+/// labelled where it leaves it.
+fn iso_zeta(
+    painter: &egui::Painter,
+    grid: &Grid,
+    to_screen: &dyn Fn(f64, f64) -> Pos2,
+    map: Rect,
+    font: &FontId,
+) {
+    const SAMPLES: usize = 64;
+    let colour = Color32::from_rgba_unmultiplied(255, 255, 255, 150);
+    let (lo, hi) = (grid.dm.to_coord(grid.dm.lo), grid.dm.to_coord(grid.dm.hi));
+    for (n, zeta) in ISO_ZETA.into_iter().enumerate() {
+        let mut line: Vec<Pos2> = Vec::new();
+        for s in 0..=SAMPLES {
+            let dm = grid
+                .dm
+                .from_coord(lo + (hi - lo) * s as f64 / SAMPLES as f64);
+            let km = (dm / (2.0 * zeta)).powi(2);
+            if km >= grid.km.lo && km <= grid.km.hi {
+                line.push(to_screen(dm, km));
+            }
+        }
+        if line.len() < 2 {
+            continue;
+        }
+        let last = line[line.len() - 1];
+        painter.add(egui::Shape::dashed_line(
+            &line,
+            Stroke::new(1.0, colour),
+            4.0,
+            3.0,
+        ));
+        // Labels only where there is room for them (the big map).
+        if map.width() < 200.0 {
+            continue;
+        }
+        // Staggered so that lines leaving close together stay readable.
+        let at = Pos2::new(
+            last.x.min(map.right() - 2.0),
+            last.y.max(map.top() + 2.0) + 11.0 * n as f32,
+        );
+        painter.text(
+            at,
+            Align2::RIGHT_TOP,
+            format!("ζ={zeta}"),
+            font.clone(),
+            colour,
+        );
+    }
 }
 
 /// The grid index nearest a value.

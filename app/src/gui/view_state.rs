@@ -5,6 +5,7 @@
 use dmpscope_core::segment::SegmentSettings;
 use eframe::egui_wgpu;
 
+use super::commands::Map;
 use super::heatmap::Cache;
 use super::view3d::View3d;
 use crate::session::Session;
@@ -30,6 +31,18 @@ impl Default for RlChoices {
     }
 }
 
+/// What the right panel shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RightTab {
+    /// The selected demo's position, velocity and acceleration.
+    #[default]
+    Demo,
+    /// Every demo's standardised forcing term and sigma_f.
+    Forcing,
+    /// The Pareto front of (sum d, S).
+    TradeOff,
+}
+
 /// The views' state.
 pub struct ViewState {
     /// The demo shown in the plots (a model demo index).
@@ -38,8 +51,19 @@ pub struct ViewState {
     pub t: f64,
     /// The 3D view's camera and toggles.
     pub view3d: View3d,
-    /// The heat maps' textures: J, sum d, S.
+    /// The heat maps' textures: J, sum d, the second small map.
     pub maps: [Cache; 3],
+    /// The second small map: S or a_peak.
+    pub second_map: Map,
+    /// What the right panel shows.
+    pub right: RightTab,
+    /// The demo under the pointer last frame (a model demo index),
+    /// highlighted in the forcing terms, the 3D view and the demos list.
+    pub hovered: Option<usize>,
+    /// The demo under the pointer this frame, as the views find it.
+    pub hovering: Option<usize>,
+    /// The Pareto front of the landscape shown, computed once per snapshot.
+    pub pareto: super::tradeoff::FrontCache,
     /// The RL panel's choices.
     pub rl: RlChoices,
     /// The frame filter as typed (applied on Enter or leaving the field).
@@ -58,11 +82,24 @@ impl ViewState {
             t: 0.5,
             view3d: View3d::new(render_state),
             maps: Default::default(),
+            second_map: Map::S,
+            right: RightTab::default(),
+            hovered: None,
+            hovering: None,
+            pareto: Default::default(),
             rl: RlChoices::default(),
             frames_text: String::new(),
             segment: SegmentSettings::default(),
             model_seen: None,
         }
+    }
+
+    /// Ends a frame's hovering: what was found becomes what is
+    /// highlighted; returns whether that changed (a repaint shows it).
+    pub fn end_hover(&mut self) -> bool {
+        let changed = self.hovered != self.hovering;
+        self.hovered = self.hovering.take();
+        changed
     }
 
     /// Follows a new model: the camera fits it again and the selection

@@ -103,6 +103,8 @@ pub struct Shown {
     pub s: Vec<f64>,
     /// J for [`Shown::k`], filled likewise.
     pub j: Vec<f64>,
+    /// The largest a_peak of any demo, filled likewise.
+    pub a_peak: Vec<f64>,
     /// The k of `j`.
     pub k: f64,
     /// Changes with every snapshot shown (with `k`, keys the heat maps'
@@ -118,6 +120,7 @@ impl Shown {
             d_sum: l.preview(&l.d_sum),
             s: l.preview(&l.s),
             j: l.preview(&l.j(k)),
+            a_peak: l.preview(&l.a_peak),
             k,
             snapshot,
             version,

@@ -42,7 +42,9 @@ use std::sync::Arc;
 
 use dmpscope_core::extract::Refined;
 use dmpscope_core::similarity::Standardised;
-use dmpscope_core::{DemoInfo, Extraction, Model, Notice, RawDemo, Report, Rollout, TableRow};
+use dmpscope_core::{
+    DemoInfo, Extraction, Model, Notice, PointEval, RawDemo, Report, Rollout, TableRow,
+};
 
 pub use commands::Command;
 pub use diagnostics::DiagSnapshot;
@@ -292,6 +294,11 @@ impl Session {
         self.constrained
             .as_ref()
             .and_then(|c| c.result.as_ref().map(Option::as_ref))
+    }
+
+    /// The operating point's evaluation (its gains, d, a_peak, S).
+    pub fn point(&self) -> Option<&PointEval> {
+        self.point.as_ref().map(|p| &p.eval)
     }
 
     /// Every demo's standardised forcing term and sigma_f at the operating

@@ -1,6 +1,7 @@
 //! Can the gains be trusted? The diagnostics of an extraction (method.md
 //! section 9): the optimum's depth and balance, each demo's share of S, the
-//! S minimum alone, leave-one-out and bootstrap optima.
+//! S minimum alone, leave-one-out and bootstrap optima, and the Pareto front
+//! of `(sum d, S)`.
 //!
 //! The cheap parts are computed when a [`DiagnosticsJob`] is made; the
 //! resampled extractions (one per demo left out, one per bootstrap resample)
@@ -10,6 +11,7 @@
 //! same box ([`DiagSettings::grid`]), then the same Nelder-Mead refinement.
 
 mod balance;
+mod pareto;
 mod resample;
 
 use std::sync::Arc;
@@ -17,6 +19,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 pub use balance::{FLAT_DEPTH, balanced_k, depth, k_ratio};
+pub use pareto::pareto_front;
 pub use resample::{SubExtraction, SubOptimum, leave_out, optimum_of, percentiles, resamples};
 
 use crate::extract::{Extraction, refine};

@@ -27,8 +27,10 @@ pub fn central_ui(
         let learned = session
             .rl()
             .and_then(|(r, p)| p.greedy.as_ref().map(|g| (r.demo, g.path.as_slice())));
+        // The demo hovered anywhere is the one the 3D view highlights.
+        let highlighted = view.hovered.unwrap_or(view.selected);
         view.view3d
-            .show(ui, model, session.paths(), view.selected, view.t, learned);
+            .show(ui, model, session.paths(), highlighted, view.t, learned);
     }
     Vec::new()
 }
@@ -61,6 +63,69 @@ fn maps(
     height: f32,
 ) {
     let grid = shown.grid();
+    let markers = markers(session);
+    let cloud: Vec<(f64, f64)> = session
+        .diagnostics()
+        .map(|d| d.cloud.iter().map(|o| (o.dm, o.km)).collect())
+        .unwrap_or_default();
+    let n_km = grid.km.n;
+    let readout = |i: usize, j: usize| {
+        let idx = i * n_km + j;
+        [
+            shown.d_sum[idx],
+            shown.s[idx],
+            shown.j[idx],
+            shown.a_peak[idx],
+        ]
+    };
+    let log_colour = s.log_colour;
+    let limit = s.a_peak_limit;
+    let mut op = s.op;
+    let second = view.second_map;
+    let [c_j, c_d, c_s] = &mut view.maps;
+    let mut map = |ui: &mut egui::Ui, cache, which: Map, side: f32| {
+        let on_j = which == Map::J;
+        let title = match (which, limit) {
+            (Map::J, Some(l)) => format!("{} (grey: a_peak > {l} m/s²)", which.title()),
+            _ => which.title().to_owned(),
+        };
+        let input = MapInput {
+            title: &title,
+            values: which.values(shown),
+            key: (shown.version, if on_j { shown.k.to_bits() } else { 0 }),
+            grid,
+            log_colour,
+            readout: &readout,
+            mask: limit.filter(|_| on_j).map(|l| (shown.a_peak.as_slice(), l)),
+            iso_zeta: true,
+            cloud: if on_j { &cloud } else { &[] },
+        };
+        heatmap::show(ui, cache, &input, &markers, &mut op, side);
+    };
+    // J on the left, sum d and S (or a_peak) stacked on the right, within
+    // `height`.
+    let width = ui.available_width();
+    let big = heatmap::side_for(egui::vec2(width * 0.5, height));
+    let small = heatmap::side_for(egui::vec2(width * 0.5, height * 0.5 - 12.0));
+    let mut chosen = second;
+    ui.horizontal_top(|ui| {
+        ui.vertical(|ui| map(ui, c_j, Map::J, big));
+        ui.vertical(|ui| {
+            map(ui, c_d, Map::DSum, small);
+            ui.horizontal(|ui| {
+                ui.selectable_value(&mut chosen, Map::S, "S");
+                ui.selectable_value(&mut chosen, Map::APeak, "a_peak");
+            });
+            map(ui, c_s, chosen, small);
+        });
+    });
+    view.second_map = chosen;
+    s.op = op;
+}
+
+/// The paper's gains, the optimum, the S minimum and the constrained
+/// optimum as labelled markers.
+fn markers(session: &Session) -> Vec<Marker> {
     let mut markers: Vec<Marker> = PAPER_PRESETS
         .iter()
         .map(|p| Marker {
@@ -78,42 +143,21 @@ fn maps(
             colour: Color32::from_rgb(255, 90, 60),
         });
     }
-    let n_km = grid.km.n;
-    let readout = |i: usize, j: usize| {
-        let idx = i * n_km + j;
-        (shown.d_sum[idx], shown.s[idx], shown.j[idx])
-    };
-    let log_colour = s.log_colour;
-    let mut op = s.op;
-    let [c_j, c_d, c_s] = &mut view.maps;
-    let mut map = |ui: &mut egui::Ui, cache, which: Map, side: f32| {
-        let input = MapInput {
-            title: which.title(),
-            values: which.values(shown),
-            key: (
-                shown.version,
-                if which == Map::J {
-                    shown.k.to_bits()
-                } else {
-                    0
-                },
-            ),
-            grid,
-            log_colour,
-            readout: &readout,
-        };
-        heatmap::show(ui, cache, &input, &markers, &mut op, side);
-    };
-    // J on the left, sum d and S stacked on the right, within `height`.
-    let width = ui.available_width();
-    let big = heatmap::side_for(egui::vec2(width * 0.5, height));
-    let small = heatmap::side_for(egui::vec2(width * 0.5, height * 0.5));
-    ui.horizontal_top(|ui| {
-        ui.vertical(|ui| map(ui, c_j, Map::J, big));
-        ui.vertical(|ui| {
-            map(ui, c_d, Map::DSum, small);
-            map(ui, c_s, Map::S, small);
+    if let Some(m) = session.diagnostics().and_then(|d| d.diagnostics.s_minimum) {
+        markers.push(Marker {
+            label: "S min".into(),
+            dm: m.dm,
+            km: m.km,
+            colour: Color32::from_rgb(120, 230, 255),
         });
-    });
-    s.op = op;
+    }
+    if let Some(Some(c)) = session.constrained() {
+        markers.push(Marker {
+            label: "constrained".into(),
+            dm: c.dm,
+            km: c.km,
+            colour: Color32::from_rgb(255, 230, 90),
+        });
+    }
+    markers
 }

@@ -5,6 +5,8 @@ use dmpscope_core::Level;
 use eframe::egui::{self, Color32};
 
 use super::super::commands::Command;
+use super::super::forcing::demo_colour;
+use super::super::view_state::ViewState;
 use crate::session::{self, Session};
 
 /// The colour of a message of `level`.
@@ -17,9 +19,15 @@ pub fn level_colour(level: Level) -> Color32 {
 }
 
 /// The demos list and the messages.
-pub fn demos_ui(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Command>) {
+pub fn demos_ui(
+    ui: &mut egui::Ui,
+    session: &Session,
+    view: &mut ViewState,
+    out: &mut Vec<Command>,
+) {
     ui.heading("Demos");
     let in_model = session.model_demos();
+    let hovered = view.hovered.and_then(|i| in_model.get(i).copied());
     egui::ScrollArea::vertical()
         .id_salt("demos")
         .max_height(220.0)
@@ -37,12 +45,21 @@ pub fn demos_ui(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Command>) {
                 }
                 let mut included = entry.included;
                 let label = egui::RichText::new(text);
+                let model_index = in_model.iter().position(|&m| m == i);
                 let label = if left_out {
                     label.color(level_colour(Level::Warning))
+                } else if hovered == Some(i) {
+                    label
+                        .strong()
+                        .color(model_index.map_or(Color32::WHITE, demo_colour))
                 } else {
                     label
                 };
-                if ui.checkbox(&mut included, label).changed() {
+                let response = ui.checkbox(&mut included, label);
+                if response.hovered() {
+                    view.hovering = model_index;
+                }
+                if response.changed() {
                     out.push(session::Command::SetIncluded { demo: i, included }.into());
                 }
             }

@@ -62,10 +62,23 @@ pub fn gains_ui(ui: &mut egui::Ui, session: &Session, s: &mut Settings) {
         }
         return;
     };
-    ui.label(format!(
-        "Extracted (M:D:K) = 1 : {:.3} : {:.3}, zeta {:.3}, J {:.4}",
-        x.eval.dm, x.eval.km, x.eval.zeta, x.j
-    ));
+    let flat = session.diagnostics().map(|d| d.diagnostics.flat);
+    if flat == Some(true) {
+        // No number is presented as extracted when J is flat.
+        ui.colored_label(
+            Color32::from_rgb(240, 180, 80),
+            "The data do not determine the gains: J is flat (see Diagnostics).",
+        );
+        ui.weak(format!(
+            "J is least at (M:D:K) = 1 : {:.3} : {:.3}, J {:.4}, barely below the box's boundary",
+            x.eval.dm, x.eval.km, x.j
+        ));
+    } else {
+        ui.label(format!(
+            "Extracted (M:D:K) = 1 : {:.3} : {:.3}, zeta {:.3}, J {:.4}",
+            x.eval.dm, x.eval.km, x.eval.zeta, x.j
+        ));
+    }
     if x.on_edge() {
         ui.colored_label(
             Color32::from_rgb(240, 180, 80),

@@ -6,6 +6,7 @@
 
 mod central;
 mod demos;
+mod diagnostics;
 mod gains;
 mod loading;
 mod plots_panel;

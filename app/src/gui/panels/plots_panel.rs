@@ -1,23 +1,42 @@
-//! The right panel: the demo shown, a time slider, and the time plots of
-//! the demo against its regeneration at the operating point.
+//! The right panel, in three tabs: the demo shown with a time slider and
+//! its time plots against its regeneration at the operating point; every
+//! demo's standardised forcing term and sigma_f there; the Pareto front of
+//! (sum d, S).
 
 use eframe::egui;
 
 use super::super::commands::Command;
-use super::super::plots;
-use super::super::view_state::ViewState;
+use super::super::view_state::{RightTab, ViewState};
+use super::super::{forcing, plots, tradeoff};
 use crate::session::{Session, Settings};
 
 /// The plots panel.
 pub fn plots_ui(
     ui: &mut egui::Ui,
     session: &Session,
-    _s: &mut Settings,
+    s: &mut Settings,
     view: &mut ViewState,
 ) -> Vec<Command> {
     let Some(model) = session.model() else {
         return Vec::new();
     };
+    ui.horizontal(|ui| {
+        ui.selectable_value(&mut view.right, RightTab::Demo, "Demo");
+        ui.selectable_value(&mut view.right, RightTab::Forcing, "Forcing terms");
+        ui.selectable_value(&mut view.right, RightTab::TradeOff, "Trade-off");
+    });
+    ui.separator();
+    match view.right {
+        RightTab::Demo => {}
+        RightTab::Forcing => {
+            forcing_tab(ui, session, view);
+            return Vec::new();
+        }
+        RightTab::TradeOff => {
+            tradeoff_tab(ui, session, s, view);
+            return Vec::new();
+        }
+    }
     let demos = model.demos();
     let Some(demo) = demos.get(view.selected) else {
         return Vec::new();
@@ -48,4 +67,53 @@ pub fn plots_ui(
         view.t = t;
     }
     Vec::new()
+}
+
+fn forcing_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) {
+    let (Some(model), Some(terms)) = (session.model(), session.forcing_terms()) else {
+        return;
+    };
+    if model.demos().len() < 2 {
+        ui.label("S compares the demos' forcing terms: it needs two or more demonstrations.");
+    }
+    let names: Vec<String> = model.demos().iter().map(|d| d.name.clone()).collect();
+    let flagged = session
+        .diagnostics()
+        .map(|d| d.diagnostics.inconsistent())
+        .unwrap_or_default();
+    let (dm, km) = session
+        .point()
+        .map_or((f64::NAN, f64::NAN), |p| (p.dm, p.km));
+    ui.weak(format!("at the operating point D/M {dm:.3}, K/M {km:.3}"));
+    let input = forcing::ForcingInput {
+        terms,
+        names: &names,
+        shares: session.point_shares(),
+        flagged: &flagged,
+        hovered: view.hovered,
+    };
+    if let Some(i) = forcing::show(ui, &input) {
+        view.hovering = Some(i);
+    }
+}
+
+fn tradeoff_tab(ui: &mut egui::Ui, session: &Session, s: &mut Settings, view: &mut ViewState) {
+    let Some(shown) = session.shown() else {
+        ui.label("The trade-off needs the landscape.");
+        return;
+    };
+    let marks = tradeoff::Marks {
+        optimum: session.extraction().map(|x| [x.eval.d_sum, x.eval.s]),
+        op: session.point().map(|p| [p.d_sum, p.s]),
+        k: s.k,
+    };
+    let front = view.pareto.front(shown);
+    if let Some(idx) = tradeoff::show(ui, shown, front, &marks) {
+        let grid = shown.grid();
+        let l = &shown.snapshot.landscape;
+        let (i, j) = (idx / grid.km.n, idx % grid.km.n);
+        if let (Some(&dm), Some(&km)) = (l.dm.get(i), l.km.get(j)) {
+            s.op = (dm, km);
+        }
+    }
 }

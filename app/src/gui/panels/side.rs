@@ -1,11 +1,11 @@
-//! The side panel: the demos and messages, the gains, RL, and the Loading
-//! and Settings sections.
+//! The side panel: the demos and messages, the gains, the diagnostics, RL,
+//! and the Loading and Settings sections.
 
 use eframe::egui;
 
 use super::super::commands::Command;
 use super::super::view_state::ViewState;
-use super::{demos, gains, loading, rl, settings};
+use super::{demos, diagnostics, gains, loading, rl, settings};
 use crate::session::{Session, Settings};
 
 /// The side panel.
@@ -16,9 +16,15 @@ pub fn side_ui(
     view: &mut ViewState,
 ) -> Vec<Command> {
     let mut out = Vec::new();
-    demos::demos_ui(ui, session, &mut out);
+    demos::demos_ui(ui, session, view, &mut out);
     ui.separator();
     gains::gains_ui(ui, session, s);
+    ui.separator();
+    egui::CollapsingHeader::new("Diagnostics")
+        .default_open(true)
+        .show(ui, |ui| {
+            diagnostics::diagnostics_ui(ui, session, s, view, &mut out)
+        });
     ui.separator();
     ui.collapsing("RL with DMP", |ui| {
         rl::rl_ui(ui, session, s, view, &mut out)

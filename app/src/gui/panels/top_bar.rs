@@ -1,11 +1,11 @@
-//! The top bar: Open (files, a folder), Export, what is loaded, the loading
+//! The top bar: Open (files, a folder), the bundled samples, Export, what is loaded, the loading
 //! and landscape progress with Cancel or Restart.
 
 use eframe::egui;
 
 use super::super::commands::{Command, Export, Map};
 use super::super::view_state::ViewState;
-use crate::session::{self, Session, Settings, Status};
+use crate::session::{self, Session, Settings, Source, Status};
 
 /// The top bar.
 pub fn top_bar_ui(
@@ -36,6 +36,14 @@ pub fn top_bar_ui(
                 out.push(Command::Browse);
             }
         }
+        ui.menu_button("Samples", |ui| {
+            for (sample, about) in Source::samples() {
+                if ui.button(sample.name()).on_hover_text(about).clicked() {
+                    out.push(session::Command::OpenSample(sample).into());
+                    ui.close();
+                }
+            }
+        });
         ui.menu_button("Export", |ui| export_menu(ui, session, &mut out));
         ui.label(format!(
             "{} file(s), {} demos",
@@ -86,6 +94,7 @@ fn export_menu(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Command>) {
     item(ui, maps, "J map (PNG)", Export::Map(Map::J));
     item(ui, maps, "sum d map (PNG)", Export::Map(Map::DSum));
     item(ui, maps, "S map (PNG)", Export::Map(Map::S));
+    item(ui, maps, "a_peak map (PNG)", Export::Map(Map::APeak));
     let model = session.model().is_some();
     item(ui, model, "Gains and Table I (JSON)", Export::ReportJson);
     item(ui, model, "Table I (CSV)", Export::TableCsv);

@@ -1,0 +1,110 @@
+//! The trade-off view: the Pareto front of `(sum d, S)` over the grid, the
+//! line of slope `-k` through the optimum (J's level line: the optimum is
+//! where it touches the front), the operating point; a click moves the
+//! operating point to the grid point of the front nearest it.
+
+use dmpscope_core::diagnostics::pareto_front;
+use eframe::egui::{self, Color32};
+use egui_plot::{Line, MarkerShape, Plot, PlotPoint, Points};
+
+use crate::session::Shown;
+
+/// The front of one snapshot, computed once per snapshot.
+#[derive(Default)]
+pub struct FrontCache {
+    version: Option<u64>,
+    /// Grid indices on the front, by increasing sum d.
+    front: Vec<usize>,
+}
+
+impl FrontCache {
+    /// The front of `shown` (recomputed when it is a new snapshot).
+    pub fn front(&mut self, shown: &Shown) -> &[usize] {
+        if self.version != Some(shown.version) {
+            self.front = pareto_front(&shown.d_sum, &shown.s);
+            self.version = Some(shown.version);
+        }
+        &self.front
+    }
+}
+
+/// What the view marks besides the front.
+pub struct Marks {
+    /// `(sum d, S)` of the optimum, if extracted.
+    pub optimum: Option<[f64; 2]>,
+    /// `(sum d, S)` of the operating point.
+    pub op: Option<[f64; 2]>,
+    /// The k of J.
+    pub k: f64,
+}
+
+/// Shows the front; returns the grid index of the front point nearest a
+/// click (on screen), if any.
+pub fn show(ui: &mut egui::Ui, shown: &Shown, front: &[usize], marks: &Marks) -> Option<usize> {
+    let points: Vec<[f64; 2]> = front
+        .iter()
+        .map(|&i| [shown.d_sum[i], shown.s[i]])
+        .collect();
+    ui.label(format!(
+        "{} of {} grid points are Pareto-optimal in (sum d, S): none beats them in both. \
+         J's optimum is where the line of slope -k touches the front. Click to move the \
+         operating point to the nearest point of the front.",
+        front.len(),
+        shown.d_sum.len()
+    ));
+    let response = Plot::new("pareto front")
+        .height((ui.available_height() - 8.0).max(120.0))
+        .x_axis_label("sum d [m]")
+        .y_axis_label("S")
+        .allow_scroll(false)
+        .show(ui, |plot| {
+            plot.line(Line::new("front", points.clone()).color(Color32::from_rgb(120, 200, 255)));
+            plot.points(
+                Points::new("grid points", points.clone())
+                    .radius(2.0)
+                    .color(Color32::from_rgb(120, 200, 255)),
+            );
+            if let (Some([x0, y0]), Some(first), Some(last)) =
+                (marks.optimum, points.first(), points.last())
+            {
+                let (a, b) = (first[0].min(x0), last[0].max(x0));
+                let y = |x: f64| y0 - marks.k * (x - x0);
+                plot.line(
+                    Line::new("slope -k", vec![[a, y(a)], [b, y(b)]])
+                        .color(Color32::from_rgb(255, 90, 60))
+                        .width(1.0),
+                );
+                plot.points(
+                    Points::new("optimum", vec![[x0, y0]])
+                        .shape(MarkerShape::Diamond)
+                        .radius(6.0)
+                        .color(Color32::from_rgb(255, 90, 60)),
+                );
+            }
+            if let Some(p) = marks.op {
+                plot.points(
+                    Points::new("operating point", vec![p])
+                        .radius(5.0)
+                        .color(Color32::WHITE),
+                );
+            }
+            let clicked = plot.response().clicked();
+            (clicked, plot.pointer_coordinate(), *plot.transform())
+        });
+    let (clicked, pointer, transform) = response.inner;
+    if !clicked {
+        return None;
+    }
+    let pointer = pointer?;
+    // The nearest front point on screen.
+    let at = transform.position_from_point(&pointer);
+    let nearest = points
+        .iter()
+        .enumerate()
+        .map(|(n, p)| {
+            let q = transform.position_from_point(&PlotPoint::new(p[0], p[1]));
+            (n, q.distance_sq(at))
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    Some(front[nearest.0])
+}
