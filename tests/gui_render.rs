@@ -137,3 +137,31 @@ fn the_3d_view_draws_the_demos_and_hides_them_on_request() {
         "hiding every demo clears the view: {hidden} vs {shown} coloured pixels"
     );
 }
+
+#[test]
+fn the_diagnostics_forcing_terms_and_trade_off_match_their_baselines() {
+    if !have_lavapipe() {
+        return;
+    }
+    let mut h = harness();
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "Samples")
+        .click();
+    h.run_steps(2);
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "planted8.mcap")
+        .click();
+    h.run_steps(5);
+    assert!(
+        h.state()
+            .session()
+            .diagnostics()
+            .is_some_and(|d| d.complete())
+    );
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "Forcing terms")
+        .click();
+    h.run_steps(3);
+    h.snapshot("window_planted_forcing");
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "Trade-off")
+        .click();
+    h.run_steps(3);
+    h.snapshot("window_planted_tradeoff");
+}

@@ -47,7 +47,8 @@ pub fn show(ui: &mut egui::Ui, shown: &Shown, front: &[usize], marks: &Marks) ->
         .collect();
     ui.label(format!(
         "{} of {} grid points are Pareto-optimal in (sum d, S): none beats them in both. \
-         J's optimum is where the line of slope -k touches the front. Click to move the \
+         J's optimum is where the line of slope -k touches the front (the refined optimum \
+         may lie a little below this front of grid points). Click to move the \
          operating point to the nearest point of the front.",
         front.len(),
         shown.d_sum.len()
@@ -58,7 +59,16 @@ pub fn show(ui: &mut egui::Ui, shown: &Shown, front: &[usize], marks: &Marks) ->
         .y_axis_label("S")
         .allow_scroll(false)
         .show(ui, |plot| {
-            plot.line(Line::new("front", points.clone()).color(Color32::from_rgb(120, 200, 255)));
+            // Segment by segment: the stroked path of these points came out
+            // as a filled wedge under the software renderers.
+            for (n, pair) in thinned(&points).windows(2).enumerate() {
+                plot.line(
+                    Line::new("front", pair.to_vec())
+                        .id(("front", n))
+                        .color(Color32::from_rgb(120, 200, 255))
+                        .width(1.0),
+                );
+            }
             plot.points(
                 Points::new("grid points", points.clone())
                     .radius(2.0)
@@ -107,4 +117,29 @@ pub fn show(ui: &mut egui::Ui, shown: &Shown, front: &[usize], marks: &Marks) ->
         })
         .min_by(|a, b| a.1.total_cmp(&b.1))?;
     Some(front[nearest.0])
+}
+
+/// The front's points without those closer than a thousandth of its span
+/// to the previous one kept: near-duplicates make a stroked path's joins
+/// spike.
+fn thinned(points: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let span = |i: usize| {
+        let (lo, hi) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p[i]), b.max(p[i]))
+            });
+        (hi - lo).max(f64::MIN_POSITIVE)
+    };
+    let (sx, sy) = (span(0), span(1));
+    let mut out: Vec<[f64; 2]> = Vec::with_capacity(points.len());
+    for (n, p) in points.iter().enumerate() {
+        let far = out
+            .last()
+            .is_none_or(|q| (p[0] - q[0]).abs() / sx > 1e-3 || (p[1] - q[1]).abs() / sy > 1e-3);
+        if far || n + 1 == points.len() {
+            out.push(*p);
+        }
+    }
+    out
 }
