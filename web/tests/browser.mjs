@@ -129,12 +129,29 @@ try {
   const bin = process.env.DMPSCOPE_BIN ??
     [join(repo, "target", "debug", "dmpscope"), join(repo, "target", "release", "dmpscope")].find(existsSync);
   if (!bin) fail("no native dmpscope binary to compare with (cargo build first)");
-  const native = JSON.parse(execFileSync(bin, ["extract", join(repo, "assets", "reach10.mcap"), "--json"],
-    { stdio: ["ignore", "pipe", "ignore"] }).toString()).optimum;
+  const report = JSON.parse(execFileSync(bin, ["extract", join(repo, "assets", "reach10.mcap"), "--json"],
+    { stdio: ["ignore", "pipe", "ignore"] }).toString());
+  const native = report.optimum;
   const rel = (a, b) => Math.abs(a - b) / Math.max(Math.abs(b), 1e-300);
   const worst = Math.max(rel(done.optimum.dm, native.dm), rel(done.optimum.km, native.km), rel(done.optimum.j, native.j));
   figures.optimum_vs_native_rel = worst;
   check(worst <= 1e-12, `the browser's optimum equals the native one (relative difference ${worst.toExponential(2)})`);
+
+  // The diagnostics, time-sliced on the page's thread: the same numbers as
+  // the native `extract --json`.
+  const diagStart = Date.now();
+  const diag = await until("the diagnostics", (s) => s.diagnostics && s.diagnostics.done === s.diagnostics.total && s.diagnostics.values.bootstrap, 180000);
+  figures.diagnostics_s = (Date.now() - diagStart) / 1000;
+  figures.longest_slice_ms_with_diagnostics = diag.longest_slice_ms;
+  const nd = report.diagnostics, bd = diag.diagnostics.values;
+  const pairs = [[bd.depth, nd.depth], [bd.k_ratio, nd.k_ratio], [bd.balanced_k, nd.balanced_k],
+    [bd.s_minimum.dm, nd.s_minimum.dm], [bd.s_minimum.km, nd.s_minimum.km],
+    ...bd.demos.flatMap((d, i) => [[d.s_share, nd.demos[i].s_share], [d.loo.dm, nd.demos[i].loo.dm], [d.loo.km, nd.demos[i].loo.km], [d.loo.j, nd.demos[i].loo.j]]),
+    ...[0, 1, 2].flatMap((i) => [[bd.bootstrap.dm[i], nd.bootstrap.dm[i]], [bd.bootstrap.km[i], nd.bootstrap.km[i]]])];
+  const diagWorst = Math.max(...pairs.map(([a, b]) => (a === b ? 0 : rel(a, b))));
+  figures.diagnostics_vs_native_rel = diagWorst;
+  check(bd.flat === nd.flat && bd.flat === true, "the browser says the sample does not determine the gains, as the CLI");
+  check(diagWorst <= 1e-9, `the browser's diagnostics equal the native ones (relative difference ${diagWorst.toExponential(2)})`);
 
   // A drag on the J map (at 1280x800 it spans about x 382..556, y 55..230).
   const before = await state();

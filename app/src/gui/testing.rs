@@ -35,7 +35,8 @@ impl FrameWatch {
 impl DmpApp {
     /// What the browser tests read: demos, operating point, optimum,
     /// landscape progress, a checksum of the regenerated paths at the
-    /// operating point, Table I's rows, frame and slice timings, messages.
+    /// operating point, Table I's rows, frame and slice timings, messages,
+    /// the diagnostics so far.
     pub fn test_state(&self, ctx: &egui::Context) -> serde_json::Value {
         let session = self.session();
         let (dm, km) = self.settings.op;
@@ -82,6 +83,11 @@ impl DmpApp {
             "compute_ms": page.total_ms,
             "messages": messages,
             "status": session.status().describe(),
+            "diagnostics": session.diagnostics().map(|d| serde_json::json!({
+                "done": d.done,
+                "total": d.total,
+                "values": d.diagnostics,
+            })),
             "repaint_causes": causes,
         })
     }
