@@ -338,3 +338,58 @@ fn a_sample_replaces_samples_but_never_the_users_recordings() {
     assert_eq!(session.sources().count(), 2);
     assert_eq!(session.demos().len(), 18);
 }
+
+#[test]
+fn one_demo_says_what_the_diagnostics_need_and_the_rest_works() {
+    let mut settings = Settings::with_grid_points(8);
+    settings.diagnostics.bootstrap = 5;
+    let mut session = session_on(vec![Source::sample()], &settings);
+    for demo in 1..10 {
+        session.apply(Command::SetIncluded {
+            demo,
+            included: false,
+        });
+    }
+    session.update(&settings);
+    assert_eq!(session.model().map(|m| m.demos().len()), Some(1));
+    let d = session.diagnostics().expect("diagnostics");
+    assert!(d.complete() && d.cloud.is_empty());
+    assert!(
+        d.about.notes.iter().any(|n| n.contains("need two or more")),
+        "{:?}",
+        d.about.notes
+    );
+    let v = &d.diagnostics;
+    assert!(v.s_minimum.is_none() && v.bootstrap.is_none());
+    assert!(
+        v.demos
+            .iter()
+            .all(|x| x.s_share.is_none() && x.loo.is_none())
+    );
+    // depth and sum d still work; nothing is NaN.
+    assert!(v.depth.is_some_and(f64::is_finite));
+    assert!(session.point_shares().is_none());
+    let terms = session.forcing_terms().expect("terms");
+    assert!(terms.sigma.iter().all(|&s| s == 0.0));
+    assert!(terms.f.iter().flatten().flatten().all(|v| v.is_finite()));
+    let report = serde_json::to_string(&session.report().expect("report")).expect("json");
+    assert!(!report.contains("NaN"), "{report}");
+
+    // Two demos: leave-one-out and the bootstrap say what they cannot do.
+    session.apply(Command::SetIncluded {
+        demo: 1,
+        included: true,
+    });
+    session.update(&settings);
+    let d = session.diagnostics().expect("diagnostics");
+    assert!(d.complete());
+    assert!(
+        d.about
+            .notes
+            .iter()
+            .any(|n| n.contains("two demonstrations")),
+        "{:?}",
+        d.about.notes
+    );
+    assert!(d.diagnostics.bootstrap.is_some());
+}

@@ -87,6 +87,8 @@ impl DmpApp {
                 "done": d.done,
                 "total": d.total,
                 "values": d.diagnostics,
+                "compute_ms": session.diagnostics_page_time().total_ms,
+                "longest_slice_ms": session.diagnostics_page_time().longest_ms,
             })),
             "repaint_causes": causes,
         })

@@ -19,8 +19,10 @@ use super::jobs::{Step, Work};
 
 /// Landscape points per step in the browser (a slice holds several).
 const SLICE_POINTS: usize = 48;
-/// Compute time between previews on the page's thread (a frame under
-/// software WebGL costs about 200 ms).
+/// Compute time before the first preview on the page's thread; each next
+/// one waits that long plus half the time computed so far (a frame under
+/// software WebGL costs 200-400 ms, so frames, not computation, would
+/// otherwise take the time).
 const PREVIEW_EVERY: Duration = Duration::from_millis(300);
 
 /// The diagnostics so far.
@@ -59,6 +61,8 @@ pub struct DiagnosticsWork {
     job: Option<DiagnosticsJob>,
     threaded: bool,
     since_preview: Duration,
+    computed: Duration,
+    wait: Duration,
 }
 
 impl DiagnosticsWork {
@@ -81,6 +85,8 @@ impl DiagnosticsWork {
             job: None,
             threaded,
             since_preview: Duration::ZERO,
+            computed: Duration::ZERO,
+            wait: PREVIEW_EVERY,
         }
     }
 
@@ -124,10 +130,12 @@ impl Work for DiagnosticsWork {
             job.step_par(2 * cores)
         };
         self.since_preview += start.elapsed();
+        self.computed += start.elapsed();
         if done {
             Step::Done(Self::snapshot(job))
-        } else if self.threaded || self.since_preview >= PREVIEW_EVERY {
+        } else if self.threaded || self.since_preview >= self.wait {
             self.since_preview = Duration::ZERO;
+            self.wait = PREVIEW_EVERY + self.computed / 2;
             Step::Publish(Self::snapshot(job))
         } else {
             Step::Working

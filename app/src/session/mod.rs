@@ -388,6 +388,15 @@ impl Session {
             .unwrap_or_default()
     }
 
+    /// Work done on the caller's thread by the diagnostics (the browser's
+    /// page thread).
+    pub fn diagnostics_page_time(&self) -> PageTime {
+        self.diagnostics
+            .as_ref()
+            .map(|d| d.page_time)
+            .unwrap_or_default()
+    }
+
     /// What the window should say where the landscape goes.
     pub fn status(&self) -> Status {
         status::of(self)

@@ -113,6 +113,7 @@ pub(super) struct DiagState {
     pub(super) key: DiagKey,
     pub(super) job: Option<Job<DiagSnapshot>>,
     pub(super) snapshot: Option<DiagSnapshot>,
+    pub(super) page_time: PageTime,
 }
 
 pub(super) struct ConstrainedState {
@@ -368,11 +369,15 @@ impl Session {
                 key,
                 job: Some(job),
                 snapshot: None,
+                page_time: PageTime::default(),
             });
         }
         let Some(d) = &mut self.diagnostics else {
             return;
         };
+        if let Some(job) = &d.job {
+            d.page_time = job.page_time();
+        }
         match d.job.as_mut().and_then(Job::poll) {
             Some(Update::Progress(s)) => d.snapshot = Some(s),
             Some(Update::Done(s)) => {

@@ -172,13 +172,13 @@ fn demos_ui(
         return;
     }
     egui::CollapsingHeader::new(format!(
-        "Per demo: share of S, optimum without it ({} x {} grid)",
+        "Per demo: share of S, leave-one-out ({} x {})",
         snap.about.grid.dm.n, snap.about.grid.km.n
     ))
     .id_salt("leave-one-out")
     .show(ui, |ui| {
         egui::Grid::new("loo table").striped(true).show(ui, |ui| {
-            for h in ["demo", "share", "D/M", "K/M", "J", ""] {
+            for h in ["demo", "share", "here", "D/M", "K/M", "J", ""] {
                 ui.strong(h);
             }
             ui.end_row();
@@ -191,10 +191,13 @@ fn demos_ui(
                 if ui.label(name).hovered() {
                     view.hovering = Some(i);
                 }
-                let share = demo
-                    .s_share
-                    .map_or("-".into(), |v| format!("{:.1} %", 100.0 * v));
-                ui.label(share);
+                let percent =
+                    |v: Option<f64>| v.map_or("-".into(), |v| format!("{:.1} %", 100.0 * v));
+                ui.label(percent(demo.s_share))
+                    .on_hover_text("its share of S at the optimum");
+                let here = session.point_shares().and_then(|s| s.get(i).copied());
+                ui.label(percent(here))
+                    .on_hover_text("its share of S at the operating point");
                 match &demo.loo {
                     Some(o) => {
                         ui.label(format!("{:.2}", o.dm));

@@ -8,7 +8,7 @@ use eframe::egui;
 use super::super::commands::Command;
 use super::super::view_state::{RightTab, ViewState};
 use super::super::{forcing, plots, tradeoff};
-use crate::session::{Session, Settings};
+use crate::session::{self, Session, Settings};
 
 /// The plots panel.
 pub fn plots_ui(
@@ -28,10 +28,7 @@ pub fn plots_ui(
     ui.separator();
     match view.right {
         RightTab::Demo => {}
-        RightTab::Forcing => {
-            forcing_tab(ui, session, view);
-            return Vec::new();
-        }
+        RightTab::Forcing => return forcing_tab(ui, session, view),
         RightTab::TradeOff => {
             tradeoff_tab(ui, session, s, view);
             return Vec::new();
@@ -69,9 +66,9 @@ pub fn plots_ui(
     Vec::new()
 }
 
-fn forcing_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) {
+fn forcing_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) -> Vec<Command> {
     let (Some(model), Some(terms)) = (session.model(), session.forcing_terms()) else {
-        return;
+        return Vec::new();
     };
     if model.demos().len() < 2 {
         ui.label("S compares the demos' forcing terms: it needs two or more demonstrations.");
@@ -92,9 +89,37 @@ fn forcing_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) {
         flagged: &flagged,
         hovered: view.hovered,
     };
+    // The flagged demos, each excluded in one click.
+    let mut out = Vec::new();
+    if !flagged.is_empty() {
+        ui.horizontal_wrapped(|ui| {
+            ui.label("flagged:");
+            for &i in &flagged {
+                let (Some(name), Some(&demo)) = (names.get(i), session.model_demos().get(i)) else {
+                    continue;
+                };
+                let r = ui
+                    .button(format!("Exclude {name}"))
+                    .on_hover_text("leave this demo out of the model");
+                if r.hovered() {
+                    view.hovering = Some(i);
+                }
+                if r.clicked() {
+                    out.push(
+                        session::Command::SetIncluded {
+                            demo,
+                            included: false,
+                        }
+                        .into(),
+                    );
+                }
+            }
+        });
+    }
     if let Some(i) = forcing::show(ui, &input) {
         view.hovering = Some(i);
     }
+    out
 }
 
 fn tradeoff_tab(ui: &mut egui::Ui, session: &Session, s: &mut Settings, view: &mut ViewState) {
