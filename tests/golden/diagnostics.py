@@ -43,25 +43,9 @@ def balanced_k(S, dsum):
     return float(np.median(S)) / float(np.median(dsum))
 
 
-def standardised(preps, D, K):
-    """(N, n, 3): each demo's f_target standardised per axis (population SD;
-    0 where the SD is below 1e-12)."""
-    fs = []
-    for p in preps:
-        ft = m.f_target(p, D, K)
-        mu = ft.mean(axis=0)
-        sd = ft.std(axis=0, ddof=0)
-        st = np.zeros_like(ft)
-        for a in range(3):
-            if sd[a] >= 1e-12:
-                st[:, a] = (ft[:, a] - mu[a]) / sd[a]
-        fs.append(st)
-    return np.stack(fs)
-
-
 def s_shares(preps, D, K):
     """q_i = integral sum_axes (f_stand(i) - mean_j f_stand(j))^2, shares q_i / sum q."""
-    fs = standardised(preps, D, K)
+    fs = m.standardised(preps, D, K)
     mean = fs.mean(axis=0)
     q = np.array([m.trapz_unit(((f - mean) ** 2).sum(axis=1)) for f in fs])
     return (q / q.sum()).tolist()

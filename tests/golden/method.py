@@ -153,10 +153,8 @@ def eval_demo(prep, D, K, f_override=None):
 
 
 # ---- section 5: S ---------------------------------------------------------
-def similarity(preps, D, K):
-    N = len(preps)
-    if N < 2:
-        return 0.0
+def standardised(preps, D, K):
+    """Every demo's f_target standardised per axis, (N, n, 3)."""
     fs = []
     for p in preps:
         ft = f_target(p, D, K)
@@ -167,7 +165,14 @@ def similarity(preps, D, K):
             if sd[a] >= 1e-12:
                 st[:, a] = (ft[:, a] - mu[a]) / sd[a]
         fs.append(st)
-    fs = np.stack(fs)                               # (N, n, 3)
+    return np.stack(fs)
+
+
+def similarity(preps, D, K):
+    N = len(preps)
+    if N < 2:
+        return 0.0
+    fs = standardised(preps, D, K)                  # (N, n, 3)
     sig = fs.std(axis=0, ddof=1)                    # (n, 3)
     return trapz_unit(np.sqrt((sig ** 2).sum(axis=1)))
 
