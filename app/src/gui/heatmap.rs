@@ -333,7 +333,7 @@ fn iso_zeta(
     font: &FontId,
 ) {
     const SAMPLES: usize = 64;
-    let colour = Color32::from_rgba_unmultiplied(255, 255, 255, 150);
+    let colour = Color32::from_rgba_unmultiplied(255, 255, 255, 110);
     let (lo, hi) = (grid.dm.to_coord(grid.dm.lo), grid.dm.to_coord(grid.dm.hi));
     for (n, zeta) in ISO_ZETA.into_iter().enumerate() {
         let mut line: Vec<Pos2> = Vec::new();
@@ -350,14 +350,11 @@ fn iso_zeta(
             continue;
         }
         let last = line[line.len() - 1];
-        painter.add(egui::Shape::dashed_line(
-            &line,
-            Stroke::new(1.0, colour),
-            4.0,
-            3.0,
-        ));
+        // Solid and faint: dashes cost a shape each, 2.4 ms a frame for the
+        // three maps (tests/frame_time.sh).
+        painter.add(egui::Shape::line(line, Stroke::new(1.0, colour)));
         // Labels only where there is room for them (the big map).
-        if map.width() < 200.0 {
+        if map.width() < 150.0 {
             continue;
         }
         // Staggered so that lines leaving close together stay readable.
