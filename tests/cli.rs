@@ -457,3 +457,44 @@ fn one_or_two_demos_say_what_the_diagnostics_cannot_do() {
     let text_out = dmpscope(&["extract", csv.to_str().expect("path"), "--grid", "8"]);
     assert!(text(&text_out.stdout).contains("need two or more"));
 }
+
+#[test]
+fn an_a_peak_limit_gives_the_constrained_optimum() {
+    let planted = repo().join("assets/planted8.mcap");
+    let run = |limit: &str| {
+        let result = dmpscope(&[
+            "extract",
+            planted.to_str().expect("path"),
+            "--grid",
+            "16",
+            "--no-diagnostics",
+            &format!("--a-peak-limit={limit}"),
+            "--json",
+        ]);
+        assert!(result.status.success(), "{}", text(&result.stderr));
+        let report: Value = serde_json::from_slice(&result.stdout).expect("json");
+        report["constrained"].clone()
+    };
+    let c = run("5.8");
+    assert_eq!(sorted_keys(&c), ["a_peak_limit", "optimum"]);
+    assert_eq!(
+        sorted_keys(&c["optimum"]),
+        ["a_peak", "dm", "j", "km", "on_edge"]
+    );
+    let peak = c["optimum"]["a_peak"].as_f64().expect("a_peak");
+    assert!(peak <= 5.8, "{peak}");
+    assert_eq!(
+        run("0.1")["optimum"],
+        Value::Null,
+        "nothing within 0.1 m/s^2"
+    );
+    let bad = dmpscope(&[
+        "extract",
+        planted.to_str().expect("path"),
+        "--grid",
+        "8",
+        "--a-peak-limit=-1",
+    ]);
+    assert!(!bad.status.success());
+    assert!(text(&bad.stderr).contains("--a-peak-limit must be a positive"));
+}

@@ -18,7 +18,9 @@
 //!                   "demos": [{"name", "s_share", "loo": {"dm", "km", "j", "on_edge"}}],
 //!                   "bootstrap": {"n", "seed", "dm": [p5, p50, p95], "km": [..],
 //!                                 "on_edge_fraction"}},
-//!   "diagnostics_about": {"grid", "resamples", "notes"}             (with diagnostics)
+//!   "diagnostics_about": {"grid", "resamples", "notes"},            (with diagnostics)
+//!   "constrained": {"a_peak_limit", "optimum": null | {"dm", "km",   (with an a_peak limit)
+//!                   "j", "a_peak", "on_edge"}}
 //! }
 //! ```
 //!
@@ -167,6 +169,93 @@ pub struct Report {
     /// How the diagnostics were made.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diagnostics_about: Option<DiagAbout>,
+    /// The optimum under an a_peak limit, when one was asked for.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub constrained: Option<Constrained>,
+}
+
+/// The least J among the gains whose largest a_peak (any demo) stays within
+/// a limit (method.md section 9).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Constrained {
+    /// The limit, m/s^2.
+    pub a_peak_limit: f64,
+    /// The constrained optimum (`None`: no grid point is within the limit).
+    pub optimum: Option<ConstrainedOptimum>,
+}
+
+/// Where the constrained optimum is.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ConstrainedOptimum {
+    /// D/M.
+    pub dm: f64,
+    /// K/M.
+    pub km: f64,
+    /// J there.
+    pub j: f64,
+    /// The largest a_peak of any demo there, m/s^2.
+    pub a_peak: f64,
+    /// Whether it lies on the box's edge.
+    pub on_edge: bool,
+}
+
+impl Constrained {
+    /// The constrained optimum of `model` on `landscape` (complete) for `k`.
+    pub fn compute(
+        model: &Model,
+        landscape: &crate::landscape::Landscape,
+        k: f64,
+        limit: f64,
+    ) -> Self {
+        let found = crate::extract::constrained(model, landscape, k, limit);
+        Self::from_refined(model, limit, found.as_ref())
+    }
+
+    /// The report of a constrained optimum already found (`None`: none
+    /// within `limit`).
+    pub fn from_refined(
+        model: &Model,
+        limit: f64,
+        found: Option<&crate::extract::Refined>,
+    ) -> Self {
+        let optimum = found.map(|r| {
+            let e = model.evaluate(r.dm, r.km);
+            ConstrainedOptimum {
+                dm: r.dm,
+                km: r.km,
+                j: r.value,
+                a_peak: e.a_peak.iter().copied().fold(0.0, f64::max),
+                on_edge: r.edges.any(),
+            }
+        });
+        Self {
+            a_peak_limit: limit,
+            optimum,
+        }
+    }
+
+    /// The constrained optimum in words, against the free one's J.
+    pub fn text(&self, free_j: Option<f64>) -> String {
+        let limit = self.a_peak_limit;
+        match &self.optimum {
+            None => format!(
+                "constrained: no gains on the grid keep every demo's a_peak within {limit} m/s^2\n"
+            ),
+            Some(c) => {
+                let above = free_j.map_or(String::new(), |f| {
+                    format!(
+                        ", {:+.1} % on the free optimum's J",
+                        100.0 * (c.j / f - 1.0)
+                    )
+                });
+                let edge = if c.on_edge { ", on the box edge" } else { "" };
+                format!(
+                    "constrained (a_peak <= {limit} m/s^2): D/M {:.4}, K/M {:.4}, J {:.6}, a_peak {:.3}{above}{edge}\n",
+                    c.dm, c.km, c.j, c.a_peak
+                )
+            }
+        }
+    }
 }
 
 /// Table I's rows: `Extracted` (when known), the five paper presets, then
@@ -216,6 +305,7 @@ impl Report {
             table,
             diagnostics: None,
             diagnostics_about: None,
+            constrained: None,
         }
     }
 

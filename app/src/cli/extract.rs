@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use dmpscope_core::Report;
 use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
+use dmpscope_core::report::Constrained;
 
 use super::inputs::InputArgs;
 use super::landscape::{GridArgs, landscape_and_optimum};
@@ -36,6 +37,10 @@ pub struct Args {
     /// (same box; at most --grid).
     #[arg(long, default_value_t = DiagSettings::default().grid_points)]
     diag_grid: usize,
+    /// Also find the least J among the gains whose largest peak
+    /// acceleration (any demo) stays within this many m/s^2.
+    #[arg(long, value_name = "M_PER_S2")]
+    a_peak_limit: Option<f64>,
 }
 
 /// Prints `(M:D:K)`, zeta, J, the edge flag, the diagnostics and Table I.
@@ -60,11 +65,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         report = report.with_diagnostics(job.diagnostics().clone(), job.about().clone());
     }
+    if let Some(limit) = args.a_peak_limit {
+        if !(limit.is_finite() && limit > 0.0) {
+            anyhow::bail!("--a-peak-limit must be a positive number of m/s^2, got {limit}");
+        }
+        report.constrained = Some(Constrained::compute(&model, &land, args.grid.k, limit));
+    }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(());
     }
     print!("{}", report.optimum_text());
+    if let Some(c) = &report.constrained {
+        print!("{}", c.text(Some(optimum.j)));
+    }
     println!();
     let diag = report.diagnostics_text();
     if !diag.is_empty() {

@@ -41,6 +41,7 @@ use std::collections::BTreeSet;
 use std::sync::Arc;
 
 use dmpscope_core::extract::Refined;
+use dmpscope_core::report::Constrained;
 use dmpscope_core::similarity::Standardised;
 use dmpscope_core::{
     DemoInfo, Extraction, Model, Notice, PointEval, RawDemo, Report, Rollout, TableRow,
@@ -338,16 +339,23 @@ impl Session {
     }
 
     /// The report of the current model, extraction, diagnostics (once
-    /// complete) and Table I (the app's JSON, CSV and Markdown exports),
+    /// complete), the constrained optimum (with an a_peak limit) and Table I (the app's JSON, CSV and Markdown exports),
     /// for the k of the last update.
     pub fn report(&self) -> Option<Report> {
         let model = self.model()?;
         let report = Report::with_rows(model, self.extraction(), self.k, self.table_rows());
         // The diagnostics once complete (a partial bootstrap is no summary).
-        Some(match self.diagnostics().filter(|d| d.complete()) {
+        let mut report = match self.diagnostics().filter(|d| d.complete()) {
             Some(d) => report.with_diagnostics(d.diagnostics.clone(), d.about.clone()),
             None => report,
-        })
+        };
+        if let Some(c) = &self.constrained
+            && let Some(found) = &c.result
+        {
+            let limit = f64::from_bits(c.key.limit);
+            report.constrained = Some(Constrained::from_refined(model, limit, found.as_ref()));
+        }
+        Some(report)
     }
 
     /// Why the extraction failed, if it did.
