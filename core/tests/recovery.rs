@@ -4,10 +4,11 @@
 //! demos hesitate and correct) the optimum is flagged. Stiffer planted
 //! gains come back biased by the preprocessing: measured and bounded here.
 
+mod common;
+
 use std::sync::Arc;
 
 use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
-use dmpscope_core::io::{LoadOptions, SourceData, load_source};
 use dmpscope_core::landscape::{FillOrder, Grid, LandscapeJob};
 use dmpscope_core::planted::{PlantedSpec, planted_demos};
 use dmpscope_core::{
@@ -100,14 +101,7 @@ fn planted_paper_gains_come_back_from_the_s_minimum_and_j_is_determined() {
 
 #[test]
 fn the_bundled_reach_sample_is_flagged() {
-    let bytes = include_bytes!("../../assets/reach10.mcap");
-    let loaded = load_source(
-        "reach10.mcap",
-        SourceData::Bytes(bytes),
-        &LoadOptions::default(),
-    )
-    .expect("sample");
-    let (_, x, d) = diagnose(&loaded.demos);
+    let (_, x, d) = diagnose(&common::sample_demos());
     assert!(x.on_edge(), "the sample's optimum is on the K/M edge");
     assert!(d.flat, "and flat: depth {:?}", d.depth);
 }

@@ -2,19 +2,13 @@
 //! documented keys and reads back to the same value; the CSV, Markdown and
 //! text renderings show every row and every demo.
 
-use dmpscope_core::io::{LoadOptions, SourceData, load_source};
+mod common;
+
 use dmpscope_core::{PrepSettings, Report, Unusable, build_model};
 
 fn sample_report() -> Report {
-    let bytes = include_bytes!("../../assets/reach10.mcap");
-    let loaded = load_source(
-        "reach10.mcap",
-        SourceData::Bytes(bytes),
-        &LoadOptions::default(),
-    )
-    .expect("sample");
     let built = build_model(
-        &loaded.demos,
+        &common::sample_demos(),
         &PrepSettings::default(),
         Default::default(),
         Unusable::Fail,

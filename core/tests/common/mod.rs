@@ -1,5 +1,6 @@
 //! Helpers shared by the test binaries that build, corrupt and load MCAP
-//! files (`bad_input`, `alloc_limits`). Each binary includes this module with
+//! files (`bad_input`, `alloc_limits`) or read the bundled sample
+//! (`report`, `recovery`). Each binary includes this module with
 //! `mod common;`; not every binary uses every helper.
 
 #![allow(dead_code)]
@@ -202,4 +203,17 @@ pub fn close(actual: f64, expected: f64, tol: f64, what: impl std::fmt::Display)
         diff <= tol,
         "{what}: {actual} vs {expected} (off by {diff:e}, tolerance {tol:e})"
     );
+}
+
+/// The bundled reach sample's demos (`assets/reach10.mcap`), read as the
+/// app and the CLI read it.
+pub fn sample_demos() -> Vec<RawDemo> {
+    let bytes = include_bytes!("../../../assets/reach10.mcap");
+    dmpscope_core::io::load_source(
+        "reach10.mcap",
+        dmpscope_core::io::SourceData::Bytes(bytes),
+        &dmpscope_core::io::LoadOptions::default(),
+    )
+    .expect("the bundled sample loads")
+    .demos
 }
