@@ -128,10 +128,16 @@ impl Model {
                 first.name
             )));
         }
+        let floor = settings.axis_sd_floor;
+        if !(0.0..=1.0).contains(&floor) {
+            return Err(Error::InvalidSetting(format!(
+                "the axis SD floor must be a fraction in [0, 1], got {floor}"
+            )));
+        }
         let basis = Basis::new(&settings, n)?;
         let projections: Vec<Projections> =
             demos.iter().map(|d| Projections::new(&basis, d)).collect();
-        let similarity = Similarity::new(&demos);
+        let similarity = Similarity::new(&demos, floor);
         let kernels = demos
             .iter()
             .zip(&projections)

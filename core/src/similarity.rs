@@ -25,11 +25,15 @@ pub struct Similarity {
     /// Population (co)variances per axis and demo:
     /// `[vA, vB, vC, cAB, cAC, cBC]` at `[axis * demos + demo]`.
     cov: Vec<[f64; 6]>,
+    /// Each axis's SD floored at this fraction of the demo's largest axis
+    /// SD (0: the method as written).
+    floor: f64,
 }
 
 impl Similarity {
-    /// Centres the three parts of each demo's target forcing term.
-    pub fn new(demos: &[PreparedDemo]) -> Self {
+    /// Centres the three parts of each demo's target forcing term; `floor`
+    /// is [`crate::dmp::DmpSettings::axis_sd_floor`] (0: the method).
+    pub fn new(demos: &[PreparedDemo], floor: f64) -> Self {
         let n = demos.first().map_or(0, PreparedDemo::len);
         let nd = demos.len();
         let mut parts = vec![[0.0; 3]; n * 3 * nd];
@@ -67,7 +71,22 @@ impl Similarity {
             demos: nd,
             parts,
             cov,
+            floor,
         }
+    }
+
+    /// `1 / sd` of each axis of demo `di` at `(dm, km)` (0 below
+    /// [`SD_FLOOR`]), each SD first floored at `floor` times the demo's
+    /// largest.
+    #[inline]
+    fn inverse_sds(&self, di: usize, dm: f64, km: f64) -> [f64; 3] {
+        let nd = self.demos;
+        let sd = [0, 1, 2].map(|axis| sd_of(&self.cov[axis * nd + di], dm, km));
+        let least = self.floor * sd[0].max(sd[1]).max(sd[2]);
+        sd.map(|s| {
+            let s = s.max(least);
+            if s < SD_FLOOR { 0.0 } else { 1.0 / s }
+        })
     }
 
     /// `S` at one gain pair; 0 with fewer than two demos.
@@ -83,9 +102,12 @@ impl Similarity {
         }
         // 1 / sd per axis, demo and lane, from the covariance quadratic form.
         let mut inv = vec![[0.0; L]; 3 * nd];
-        for (slot, c) in inv.iter_mut().zip(&self.cov) {
+        for di in 0..nd {
             for l in 0..L {
-                slot[l] = inverse_sd(c, dm, km[l]);
+                let per_axis = self.inverse_sds(di, dm, km[l]);
+                for (axis, v) in per_axis.into_iter().enumerate() {
+                    inv[axis * nd + di][l] = v;
+                }
             }
         }
         let inv_nd = 1.0 / nd as f64;
@@ -155,13 +177,19 @@ impl Similarity {
             demos: m,
             parts,
             cov,
+            floor: self.floor,
         }
     }
 
     /// Every demo's `f_stand` and the integrand of `S` at `(dm, km)`.
     pub fn standardised(&self, dm: f64, km: f64) -> Standardised {
         let (n, nd) = (self.n, self.demos);
-        let inv: Vec<f64> = self.cov.iter().map(|c| inverse_sd(c, dm, km)).collect();
+        let mut inv = vec![0.0; 3 * nd];
+        for di in 0..nd {
+            for (axis, v) in self.inverse_sds(di, dm, km).into_iter().enumerate() {
+                inv[axis * nd + di] = v;
+            }
+        }
         let mut f = vec![vec![[0.0; 3]; n]; nd];
         for k in 0..n {
             for axis in 0..3 {
@@ -221,15 +249,14 @@ impl Similarity {
     }
 }
 
-/// `1 / sd` of a demo's axis at `(dm, km)` from its covariance
-/// `[vA, vB, vC, cAB, cAC, cBC]` (0 below [`SD_FLOOR`]).
+/// The population SD of a demo's axis at `(dm, km)` from its covariance
+/// `[vA, vB, vC, cAB, cAC, cBC]`.
 #[inline]
-fn inverse_sd(c: &[f64; 6], dm: f64, km: f64) -> f64 {
+fn sd_of(c: &[f64; 6], dm: f64, km: f64) -> f64 {
     let [va, vb, vc, cab, cac, cbc] = *c;
     let var =
         va + dm * dm * vb + km * km * vc + 2.0 * dm * cab + 2.0 * km * cac + 2.0 * dm * km * cbc;
-    let sd = var.max(0.0).sqrt();
-    if sd < SD_FLOOR { 0.0 } else { 1.0 / sd }
+    var.max(0.0).sqrt()
 }
 
 /// The trapezoid sum `sum_k w_k v_k` with `w = 1/2` at both ends, for unit spacing.

@@ -9,6 +9,7 @@ mod common;
 use std::sync::Arc;
 
 use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
+use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::landscape::{FillOrder, Grid, LandscapeJob};
 use dmpscope_core::planted::{PlantedSpec, planted_demos};
 use dmpscope_core::{
@@ -38,13 +39,19 @@ fn diagnose(
     Extraction,
     dmpscope_core::diagnostics::Diagnostics,
 ) {
-    let built = build_model(
-        demos,
-        &PrepSettings::default(),
-        Default::default(),
-        Unusable::Fail,
-    )
-    .expect("model");
+    diagnose_with(demos, DmpSettings::default())
+}
+
+/// [`diagnose`] with other DMP settings (the axis SD floor).
+fn diagnose_with(
+    demos: &[RawDemo],
+    dmp: DmpSettings,
+) -> (
+    Arc<Model>,
+    Extraction,
+    dmpscope_core::diagnostics::Diagnostics,
+) {
+    let built = build_model(demos, &PrepSettings::default(), dmp, Unusable::Fail).expect("model");
     let model = Arc::new(built.model);
     let mut job =
         LandscapeJob::new(model.clone(), Grid::default(), FillOrder::Raster).expect("job");
@@ -145,4 +152,63 @@ fn with_the_bundled_planted_samples_noise_the_optimum_stays_interior_and_determi
     // Noise on y'' raises S most where the spring is soft: the S minimum
     // moves to stiffer gains (measured +13 % / +13 %), still near.
     assert!(m.dm / 10.73 < 1.3 && m.km / 20.71 < 1.3, "{m:?}");
+}
+
+#[test]
+fn an_axis_sd_floor_keeps_a_noisy_axis_from_dominating_s() {
+    // planted8: demo_05's z forcing term is mostly noise, which the
+    // method's standardisation scales to unit variance like any signal: it
+    // takes 27 % of S and is flagged. Flooring each axis's SD at 0.6 of the
+    // demo's largest (an option beyond the method) flags nobody and brings
+    // J's optimum nearer the planted gains.
+    let bytes = include_bytes!("../../assets/planted8.mcap");
+    let demos = dmpscope_core::io::load_source(
+        "planted8.mcap",
+        dmpscope_core::io::SourceData::Bytes(bytes),
+        &dmpscope_core::io::LoadOptions::default(),
+    )
+    .expect("planted8")
+    .demos;
+    let (_, x0, d0) = diagnose(&demos);
+    let floored = DmpSettings {
+        axis_sd_floor: 0.6,
+        ..DmpSettings::default()
+    };
+    let (_, x1, d1) = diagnose_with(&demos, floored);
+    let error = |x: &Extraction| {
+        (
+            (x.eval.dm / 10.73 - 1.0).abs(),
+            (x.eval.km / 20.71 - 1.0).abs(),
+        )
+    };
+    let (e0, e1) = (error(&x0), error(&x1));
+    eprintln!(
+        "planted8: floor 0 -> {:.3} / {:.3} (flagged {:?}), floor 0.6 -> {:.3} / {:.3} (flagged {:?})",
+        x0.eval.dm,
+        x0.eval.km,
+        d0.inconsistent(),
+        x1.eval.dm,
+        x1.eval.km,
+        d1.inconsistent()
+    );
+    assert_eq!(
+        d0.inconsistent(),
+        vec![4],
+        "the method as written flags demo_05"
+    );
+    assert!(d1.inconsistent().is_empty(), "the floor flags nobody");
+    assert!(
+        e1.0 < e0.0 && e1.1 < e0.1,
+        "nearer the planted gains: {e1:?} vs {e0:?}"
+    );
+    assert!(!d1.flat);
+    // Out of [0, 1] is refused, naming the setting.
+    let bad = DmpSettings {
+        axis_sd_floor: 1.5,
+        ..DmpSettings::default()
+    };
+    let err = build_model(&demos, &PrepSettings::default(), bad, Unusable::Fail)
+        .err()
+        .expect("refused");
+    assert!(err.to_string().contains("axis SD floor"), "{err}");
 }

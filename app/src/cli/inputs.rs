@@ -145,6 +145,11 @@ pub struct InputArgs {
     /// Number of DMP basis functions.
     #[arg(long, default_value_t = DmpSettings::default().basis_functions)]
     pub basis: usize,
+    /// An option beyond the method: floor each axis's SD in S's
+    /// standardisation at this fraction of the demo's largest axis SD (0:
+    /// the method as written; method.md section 5).
+    #[arg(long, default_value_t = DmpSettings::default().axis_sd_floor, value_name = "FRACTION")]
+    pub axis_sd_floor: f64,
     /// A demo that cannot be used (too few samples, non-finite values):
     /// stop, or leave it out with a warning. The CLI stops by default (a
     /// script should not get numbers from fewer demos than it named).
@@ -166,6 +171,7 @@ impl InputArgs {
     pub fn dmp(&self) -> DmpSettings {
         DmpSettings {
             basis_functions: self.basis,
+            axis_sd_floor: self.axis_sd_floor,
             ..DmpSettings::default()
         }
     }

@@ -12,6 +12,13 @@ pub struct DmpSettings {
     pub basis_functions: usize,
     /// Decay of the canonical system, `alpha_x` (ln 100 puts x(1) at 0.01).
     pub alpha_x: f64,
+    /// S's standardisation, an option beyond the method (method.md section
+    /// 5): each axis's SD of a demo's target forcing term is floored at
+    /// this fraction of that demo's largest axis SD, so an axis that barely
+    /// moves is not blown up to unit variance. 0 (the default) is the
+    /// method as written.
+    #[serde(default)]
+    pub axis_sd_floor: f64,
 }
 
 impl Default for DmpSettings {
@@ -19,6 +26,7 @@ impl Default for DmpSettings {
         Self {
             basis_functions: 100,
             alpha_x: 100f64.ln(),
+            axis_sd_floor: 0.0,
         }
     }
 }

@@ -59,6 +59,18 @@ pub fn settings_ui(ui: &mut egui::Ui, s: &mut Settings) {
         ui.add(egui::DragValue::new(&mut s.dmp.basis_functions).range(2..=500))
             .labelled_by(l.id);
         ui.end_row();
+        let l = ui.label("S: axis SD floor").on_hover_text(
+            "beyond the method: each axis's SD in S's standardisation is floored at this \
+             fraction of the demo's largest, so an axis that barely moves is not blown up \
+             to unit variance (0: the method as written)",
+        );
+        ui.add(
+            egui::DragValue::new(&mut s.dmp.axis_sd_floor)
+                .range(0.0..=1.0)
+                .speed(0.01),
+        )
+        .labelled_by(l.id);
+        ui.end_row();
     });
     // The window is odd: an even value moves on the way it was going.
     let w = &mut s.prep.sg_window;
