@@ -177,6 +177,25 @@ fn demos_ui(
     ))
     .id_salt("leave-one-out")
     .show(ui, |ui| {
+        // Its own horizontal scroll: the table must not widen the panel
+        // (the wrapped lines above would then run past its edge).
+        egui::ScrollArea::horizontal()
+            .id_salt("loo scroll")
+            .show(ui, |ui| loo_table(ui, session, snap, &flagged, view));
+    });
+}
+
+/// The per-demo table: share of S at the optimum and at the operating
+/// point, the optimum without the demo.
+fn loo_table(
+    ui: &mut egui::Ui,
+    session: &Session,
+    snap: &DiagSnapshot,
+    flagged: &[usize],
+    view: &mut ViewState,
+) {
+    let d = &snap.diagnostics;
+    {
         egui::Grid::new("loo table").striped(true).show(ui, |ui| {
             for h in ["demo", "share", "here", "D/M", "K/M", "J", ""] {
                 ui.strong(h);
@@ -214,7 +233,7 @@ fn demos_ui(
                 ui.end_row();
             }
         });
-    });
+    }
 }
 
 fn bootstrap_ui(ui: &mut egui::Ui, snap: &DiagSnapshot) {
