@@ -207,8 +207,8 @@ fn an_axis_sd_floor_keeps_a_noisy_axis_from_dominating_s() {
         axis_sd_floor: 1.5,
         ..DmpSettings::default()
     };
-    let err = build_model(&demos, &PrepSettings::default(), bad, Unusable::Fail)
-        .err()
-        .expect("refused");
+    let Err(err) = build_model(&demos, &PrepSettings::default(), bad, Unusable::Fail) else {
+        panic!("an axis SD floor of 1.5 is refused");
+    };
     assert!(err.to_string().contains("axis SD floor"), "{err}");
 }
