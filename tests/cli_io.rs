@@ -1,11 +1,12 @@
 //! End-to-end tests of the recording paths at the process boundary:
 //! export (MCAP that loads back, DMP JSON), segmentation of one take, the
-//! axis convention and CSV input.
+//! axis convention, CSV input, and streams split at clock jumps and
+//! dropouts.
 
 mod support;
 
 use serde_json::Value;
-use support::dmpscope;
+use support::{dmpscope, text};
 
 fn sample() -> String {
     support::sample_path().display().to_string()
@@ -179,4 +180,64 @@ fn a_bad_csv_row_is_named() {
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("bad.csv") && err.contains("sample 1"), "{err}");
+}
+
+/// Two reaches of the sample generator written as one topic, the second's
+/// clock `shift_ns` after (negative: before) the first's end.
+fn two_reaches_on_one_topic(name: &str, shift_ns: i64) -> String {
+    use dmpscope_core::io::write::{TopicSamples, write_pose_stamped};
+    let demos = dmpscope_core::synth::reach_demos(3, 2, 1_700_000_000_000_000_000);
+    let first = &demos[0].samples;
+    let end = first.last().expect("samples").0;
+    let start = demos[1].samples[0].0;
+    let mut samples = first.clone();
+    samples.extend(
+        demos[1]
+            .samples
+            .iter()
+            .map(|&(t, p)| (t - start + end + shift_ns, p)),
+    );
+    let path = tmp(name);
+    let out = std::fs::File::create(&path).expect("file");
+    let topics = [TopicSamples {
+        topic: "/hand",
+        frame_id: "world",
+        samples: &samples,
+    }];
+    write_pose_stamped(std::io::BufWriter::new(out), &topics, true).expect("write");
+    path
+}
+
+#[test]
+fn a_clock_jump_or_a_dropout_splits_the_stream_and_says_where() {
+    // The clock jumps back an hour between the two reaches.
+    let jump = two_reaches_on_one_topic("jump.mcap", -3_600_000_000_000);
+    let result = dmpscope(&["info", &jump]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    let (out, err) = (text(&result.stdout), text(&result.stderr));
+    assert!(err.contains("/hand: the clock jumps back 3600."), "{err}");
+    assert!(err.contains("split into 2 demos"), "{err}");
+    assert!(
+        out.contains("/hand part 1/2") && out.contains("/hand part 2/2"),
+        "{out}"
+    );
+    // A 0.5 s dropout: split too, or bridged with a warning on request.
+    let gap = two_reaches_on_one_topic("dropout.mcap", 500_000_000);
+    let split = dmpscope(&["info", &gap]);
+    assert!(
+        text(&split.stderr).contains("a 0.5"),
+        "{}",
+        text(&split.stderr)
+    );
+    assert!(text(&split.stdout).contains("part 2/2"));
+    let kept = dmpscope(&["info", &gap, "--gaps", "keep"]);
+    assert!(
+        text(&kept.stderr).contains("bridged"),
+        "{}",
+        text(&kept.stderr)
+    );
+    assert!(!text(&kept.stdout).contains("part 2/2"));
+    // Each part is judged as a demo of its own: the landscape runs.
+    let extracted = dmpscope(&["extract", &jump, "--grid", "8", "--no-diagnostics"]);
+    assert!(extracted.status.success(), "{}", text(&extracted.stderr));
 }

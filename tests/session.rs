@@ -129,6 +129,15 @@ fn each_setting_recomputes_exactly_its_stages() {
         [0, 1, 1, 1, 1, 1, 1, 1],
         "back to topics",
     );
+    // The sample has no break in time: bridging instead of splitting
+    // regroups, and the same demos recompute nothing.
+    settings.load.gaps = dmpscope_core::gaps::GapPolicy::Keep;
+    check(
+        &mut session,
+        &settings,
+        [0, 1, 0, 0, 0, 0, 0, 0],
+        "what a break in time does",
+    );
     // The excluded demo stays excluded across the regrouping.
     assert_eq!(session.model().map(|m| m.demos().len()), Some(9));
     settings.load.up = UpAxis::YUp;

@@ -28,6 +28,7 @@ pub mod diagnostics;
 pub mod dmp;
 pub mod error;
 pub mod extract;
+pub mod gaps;
 pub mod group;
 pub mod io;
 pub mod landscape;

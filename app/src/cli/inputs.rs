@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::gaps::GapPolicy;
 use dmpscope_core::group::Grouping;
 use dmpscope_core::io::{LoadOptions, SourceData, UpAxis, load_source, load_streams};
 use dmpscope_core::segment::SegmentSettings;
@@ -35,6 +36,15 @@ impl DemosBy {
             Grouping::Segmented(_) => Self::Segment,
         }
     }
+}
+
+/// What to do with a break in time inside a stream.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum GapsArg {
+    /// Split the stream there: each part is a demo of its own.
+    Split,
+    /// Keep the stream whole, bridged, with a warning.
+    Keep,
 }
 
 /// What to do with a demo that cannot be used.
@@ -71,6 +81,11 @@ pub struct LoadArgs {
     /// Segmentation: shortest demo kept, s.
     #[arg(long, default_value_t = SegmentSettings::default().min_segment_s)]
     pub min_demo: f64,
+    /// A clock jump or a dropout inside a stream (a step over max(0.1 s,
+    /// 10 x the median interval)): split the stream there, or keep it whole
+    /// (bridged); a warning names it either way.
+    #[arg(long, value_enum, default_value_t = GapsArg::Split)]
+    pub gaps: GapsArg,
 }
 
 impl LoadArgs {
@@ -93,6 +108,10 @@ impl LoadArgs {
                 DemosBy::Topic => Grouping::PerTopic,
                 DemosBy::File => Grouping::PerFile,
                 DemosBy::Segment => Grouping::Segmented(self.segment_settings()),
+            },
+            gaps: match self.gaps {
+                GapsArg::Split => GapPolicy::Split,
+                GapsArg::Keep => GapPolicy::Keep,
             },
         }
     }

@@ -7,6 +7,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use dmpscope_core::gaps::{self, GapPolicy};
 use dmpscope_core::group::{Grouping, group};
 use dmpscope_core::io::{LoadOptions, SourceData, SourceDemos, UpAxis, load_streams};
 use dmpscope_core::{Notice, RawDemo};
@@ -119,6 +120,10 @@ impl StreamKey {
     }
 }
 
+/// What turns a source's streams into demos without reading again: the
+/// grouping and what a break in time does.
+type Regrouping = (Grouping, GapPolicy);
+
 /// A loaded source's streams and the options they were read with.
 struct Streams {
     key: StreamKey,
@@ -131,8 +136,8 @@ pub struct SourceSlot {
     pub source: Source,
     streams: Option<Streams>,
     pending: Option<(StreamKey, Job<Result<SourceDemos, String>>)>,
-    /// The demos of the streams for a grouping, and that grouping.
-    grouped: Option<(Grouping, Result<Vec<RawDemo>, String>)>,
+    /// The demos of the streams for a grouping and gap policy, and those.
+    grouped: Option<(Regrouping, Result<Vec<RawDemo>, String>)>,
 }
 
 /// What changed in a slot during [`SourceSlot::update`].
@@ -218,14 +223,13 @@ impl SourceSlot {
         let Some(streams) = &self.streams else {
             return news;
         };
-        if self
-            .grouped
-            .as_ref()
-            .is_none_or(|(g, _)| *g != options.demos)
-        {
+        let how = (options.demos, options.gaps);
+        if self.grouped.as_ref().is_none_or(|(g, _)| *g != how) {
             let demos = match &streams.result {
                 Ok(loaded) => {
-                    group(loaded.demos.clone(), &options.demos).map_err(|e| e.to_string())
+                    let (split, said) = gaps::apply(loaded.demos.clone(), options.gaps);
+                    news.notices.extend(said);
+                    group(split, &options.demos).map_err(|e| e.to_string())
                 }
                 Err(e) => Err(e.clone()),
             };
@@ -240,7 +244,7 @@ impl SourceSlot {
                 }
                 _ => {}
             }
-            self.grouped = Some((options.demos, demos));
+            self.grouped = Some((how, demos));
             news.demos_changed = true;
             news.regrouped = true;
         }

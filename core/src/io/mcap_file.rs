@@ -57,6 +57,9 @@ pub struct LoadOptions {
     /// What a demonstration is (applied by [`super::load_source`]; the MCAP
     /// reader itself keeps one stream per topic and key).
     pub demos: crate::group::Grouping,
+    /// What to do with a clock jump or a dropout inside a stream (applied
+    /// by [`super::load_source`] before the grouping).
+    pub gaps: crate::gaps::GapPolicy,
 }
 
 /// What one file gave.

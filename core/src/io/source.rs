@@ -76,13 +76,16 @@ pub fn load_streams(
     }
 }
 
-/// Loads a source and groups its streams into demonstrations as
-/// `options.demos` says (method.md section 1). Grouping never crosses
+/// Loads a source, splits its streams at breaks in time (or bridges them)
+/// as `options.gaps` says, and groups them into demonstrations as
+/// `options.demos` says (method.md sections 1 and 11). Neither crosses
 /// files, so loading sources one by one and pooling them gives the same
 /// demonstrations as loading them together.
 pub fn load_source(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Result<SourceDemos> {
     let mut loaded = load_streams(name, data, options)?;
-    loaded.demos = group(std::mem::take(&mut loaded.demos), &options.demos)?;
+    let (streams, said) = crate::gaps::apply(std::mem::take(&mut loaded.demos), options.gaps);
+    loaded.notices.extend(said);
+    loaded.demos = group(streams, &options.demos)?;
     Ok(loaded)
 }
 

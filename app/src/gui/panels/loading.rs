@@ -1,8 +1,10 @@
 //! How recordings are read, as on the command line (`--y-up`, `--frame`,
-//! `--demos`, `--rest-speed`, `--min-rest`, `--min-demo`): changing the up
-//! axis or the frame filter reads the recordings again, changing what a
-//! demo is only regroups what was read.
+//! `--demos`, `--rest-speed`, `--min-rest`, `--min-demo`, `--gaps`):
+//! changing the up axis or the frame filter reads the recordings again,
+//! changing what a demo is or what a break in time does only regroups what
+//! was read.
 
+use dmpscope_core::gaps::GapPolicy;
 use dmpscope_core::group::Grouping;
 use dmpscope_core::io::UpAxis;
 use eframe::egui;
@@ -69,6 +71,17 @@ pub fn loading_ui(ui: &mut egui::Ui, s: &mut Settings, view: &mut ViewState) {
             {
                 load.demos = Grouping::Segmented(view.segment);
             }
+        });
+        ui.end_row();
+        ui.label("breaks in time");
+        ui.horizontal(|ui| {
+            ui.radio_value(&mut load.gaps, GapPolicy::Split, "split")
+                .on_hover_text(
+                    "a clock jump or a dropout (over max(0.1 s, 10 intervals)) splits the \
+                     stream: each part is a demo",
+                );
+            ui.radio_value(&mut load.gaps, GapPolicy::Keep, "bridge")
+                .on_hover_text("keep the stream whole across it (a warning names it)");
         });
         ui.end_row();
         if let Grouping::Segmented(seg) = &mut load.demos {
