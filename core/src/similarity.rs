@@ -218,23 +218,29 @@ impl Similarity {
         Standardised { f, sigma }
     }
 
-    /// Each demo's share of S at `(dm, km)` (method.md section 9):
+    /// Each demo's share of S at `(dm, km)` ([`Standardised::shares`]).
+    pub fn shares(&self, dm: f64, km: f64) -> Option<Vec<f64>> {
+        self.standardised(dm, km).shares()
+    }
+}
+
+impl Standardised {
+    /// Each demo's share of S (method.md section 9):
     /// `q_i = integral sum_axes (f_stand(i) - mean_j f_stand(j))^2`,
     /// `share_i = q_i / sum_j q_j`; `None` with fewer than two demos, equal
     /// shares when every demo's term is the same.
-    pub fn shares(&self, dm: f64, km: f64) -> Option<Vec<f64>> {
-        let nd = self.demos;
-        if nd < 2 || self.n < 2 {
+    pub fn shares(&self) -> Option<Vec<f64>> {
+        let nd = self.f.len();
+        let n = self.sigma.len();
+        if nd < 2 || n < 2 {
             return None;
         }
-        let st = self.standardised(dm, km);
-        let n = self.n;
         let mut q = vec![0.0; nd];
         for k in 0..n {
             let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
             for axis in 0..3 {
-                let mean = st.f.iter().map(|d| d[k][axis]).sum::<f64>() / nd as f64;
-                for (qi, d) in q.iter_mut().zip(&st.f) {
+                let mean = self.f.iter().map(|d| d[k][axis]).sum::<f64>() / nd as f64;
+                for (qi, d) in q.iter_mut().zip(&self.f) {
                     let e = d[k][axis] - mean;
                     *qi += w * e * e;
                 }

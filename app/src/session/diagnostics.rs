@@ -3,8 +3,7 @@
 //! shares, the S minimum), then its resampled extractions (leave-one-out,
 //! bootstrap) a batch per step natively and a few landscape points per step
 //! in the browser, each step publishing a [`DiagSnapshot`] for the views to
-//! show as results come. The constrained optimum (J under an a_peak limit)
-//! is a one-step work beside it.
+//! show as results come.
 
 use std::sync::Arc;
 
@@ -60,9 +59,9 @@ pub struct DiagnosticsWork {
     pending: Option<Pending>,
     job: Option<DiagnosticsJob>,
     threaded: bool,
-    since_preview: Duration,
+    /// Compute time so far, and when the next preview is due.
     computed: Duration,
-    wait: Duration,
+    next_preview: Duration,
 }
 
 impl DiagnosticsWork {
@@ -84,9 +83,8 @@ impl DiagnosticsWork {
             }),
             job: None,
             threaded,
-            since_preview: Duration::ZERO,
             computed: Duration::ZERO,
-            wait: PREVIEW_EVERY,
+            next_preview: PREVIEW_EVERY,
         }
     }
 
@@ -129,13 +127,11 @@ impl Work for DiagnosticsWork {
             let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
             job.step_par(2 * cores)
         };
-        self.since_preview += start.elapsed();
         self.computed += start.elapsed();
         if done {
             Step::Done(Self::snapshot(job))
-        } else if self.threaded || self.since_preview >= self.wait {
-            self.since_preview = Duration::ZERO;
-            self.wait = PREVIEW_EVERY + self.computed / 2;
+        } else if self.threaded || self.computed >= self.next_preview {
+            self.next_preview = self.computed * 3 / 2 + PREVIEW_EVERY;
             Step::Publish(Self::snapshot(job))
         } else {
             Step::Working

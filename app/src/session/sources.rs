@@ -5,7 +5,7 @@
 //! is lost.
 
 use std::path::PathBuf;
-use std::sync::Arc;
+use std::sync::{Arc, LazyLock};
 
 use dmpscope_core::gaps::{self, GapPolicy};
 use dmpscope_core::group::{Grouping, group};
@@ -13,6 +13,12 @@ use dmpscope_core::io::{LoadOptions, SourceData, SourceDemos, UpAxis, load_strea
 use dmpscope_core::{Notice, RawDemo};
 
 use super::jobs::{Job, Once, Runner, Update};
+
+/// The bundled samples' bytes, shared by every source made of them.
+static REACH10: LazyLock<Arc<[u8]>> =
+    LazyLock::new(|| Arc::from(&include_bytes!("../../../assets/reach10.mcap")[..]));
+static PLANTED8: LazyLock<Arc<[u8]>> =
+    LazyLock::new(|| Arc::from(&include_bytes!("../../../assets/planted8.mcap")[..]));
 
 /// A recording to load: a file or folder on disk, or bytes with a name (a
 /// browser upload or drop, a bundled sample).
@@ -32,21 +38,20 @@ pub enum Source {
 impl Source {
     /// The bundled sample, built into the program (native and web alike).
     pub fn sample() -> Self {
-        static SAMPLE: &[u8] = include_bytes!("../../../assets/reach10.mcap");
-        Self::Bytes {
-            name: "reach10.mcap".into(),
-            bytes: Arc::from(SAMPLE),
-        }
+        Self::bundled("reach10.mcap", &REACH10)
     }
 
     /// The bundled planted-gain sample: 8 demos integrated from one DMP
     /// at the paper's gains 10.73 / 20.71, 0.1 mm noise (`dmpscope
     /// gen-sample --planted`), on which the method recovers the gains.
     pub fn planted_sample() -> Self {
-        static SAMPLE: &[u8] = include_bytes!("../../../assets/planted8.mcap");
+        Self::bundled("planted8.mcap", &PLANTED8)
+    }
+
+    fn bundled(name: &str, bytes: &LazyLock<Arc<[u8]>>) -> Self {
         Self::Bytes {
-            name: "planted8.mcap".into(),
-            bytes: Arc::from(SAMPLE),
+            name: name.into(),
+            bytes: Arc::clone(bytes),
         }
     }
 
@@ -64,14 +69,11 @@ impl Source {
         ]
     }
 
-    /// Whether this is one of the bundled samples (its name and bytes).
+    /// Whether this is one of the bundled samples (their bytes, not a file
+    /// that happens to share a name).
     pub fn is_sample(&self) -> bool {
-        let Self::Bytes { name, bytes } = self else {
-            return false;
-        };
-        Self::samples().iter().any(|(sample, _)| {
-            matches!(sample, Self::Bytes { name: n, bytes: b } if n == name && b == bytes)
-        })
+        matches!(self, Self::Bytes { bytes, .. }
+            if Arc::ptr_eq(bytes, &REACH10) || Arc::ptr_eq(bytes, &PLANTED8))
     }
 
     /// The name shown for the source.

@@ -490,7 +490,7 @@ impl Session {
                 .collect();
             let similarity = model.similarity();
             let standardised = similarity.standardised(dm, km);
-            let shares = similarity.shares(dm, km);
+            let shares = standardised.shares();
             self.point = Some(PointState {
                 key,
                 eval,

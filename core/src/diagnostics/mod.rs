@@ -375,25 +375,23 @@ impl DiagnosticsJob {
 
     /// Computes one resampled extraction; returns whether all are done.
     pub fn step(&mut self) -> bool {
+        self.step_par(1)
+    }
+
+    /// Finishes the extraction [`DiagnosticsJob::step_points`] left part
+    /// done, if any.
+    fn finish_current(&mut self) {
         if let Some((item, mut part)) = self.current.take() {
             while !part.step(usize::MAX) {}
             let found = part.finish(self.k).ok();
             self.record(item, found);
-        } else if let Some(item) = self.todo.pop() {
-            let found = optimum_of(&self.model, &self.indices(item), self.grid, self.k).ok();
-            self.record(item, found);
         }
-        self.is_done()
     }
 
     /// Computes up to `count` resampled extractions at once (on all cores
     /// with `parallel`); returns whether all are done.
     pub fn step_par(&mut self, count: usize) -> bool {
-        if let Some((item, mut part)) = self.current.take() {
-            while !part.step(usize::MAX) {}
-            let found = part.finish(self.k).ok();
-            self.record(item, found);
-        }
+        self.finish_current();
         let take = count.min(self.todo.len());
         let items: Vec<Item> = self.todo.iter().rev().take(take).copied().collect();
         let work: Vec<(Item, Vec<usize>)> =

@@ -119,6 +119,31 @@ fn snapshot_ui(
     }
 }
 
+/// A button that excludes model demo `i` from the model (hovering it
+/// highlights the demo); the command when clicked.
+pub fn exclude_button(
+    ui: &mut egui::Ui,
+    session: &Session,
+    i: usize,
+    label: &str,
+    view: &mut ViewState,
+) -> Option<Command> {
+    let demo = *session.model_demos().get(i)?;
+    let r = ui
+        .button(label)
+        .on_hover_text("leave this demo out of the model");
+    if r.hovered() {
+        view.hovering = Some(i);
+    }
+    r.clicked().then(|| {
+        session::Command::SetIncluded {
+            demo,
+            included: false,
+        }
+        .into()
+    })
+}
+
 /// The flagged demos, then the leave-one-out table.
 fn demos_ui(
     ui: &mut egui::Ui,
@@ -130,7 +155,6 @@ fn demos_ui(
     let d = &snap.diagnostics;
     let n = d.demos.len();
     let flagged = d.inconsistent();
-    let to_session = |i: usize| session.model_demos().get(i).copied();
     if n >= 3 && flagged.is_empty() {
         ui.label(format!(
             "No demo stands out: every share of S is under {:.0} % ({INCONSISTENT_SHARE} / {n}).",
@@ -152,20 +176,7 @@ fn demos_ui(
             if r.hovered() {
                 view.hovering = Some(i);
             }
-            if let Some(demo) = to_session(i)
-                && ui
-                    .button("Exclude")
-                    .on_hover_text("leave this demo out of the model")
-                    .clicked()
-            {
-                out.push(
-                    session::Command::SetIncluded {
-                        demo,
-                        included: false,
-                    }
-                    .into(),
-                );
-            }
+            out.extend(exclude_button(ui, session, i, "Exclude", view));
         });
     }
     if n < 2 {

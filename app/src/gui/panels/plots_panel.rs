@@ -8,7 +8,8 @@ use eframe::egui;
 use super::super::commands::Command;
 use super::super::view_state::{RightTab, ViewState};
 use super::super::{forcing, plots, tradeoff};
-use crate::session::{self, Session, Settings};
+use super::diagnostics;
+use crate::session::{Session, Settings};
 
 /// The plots panel.
 pub fn plots_ui(
@@ -95,24 +96,8 @@ fn forcing_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) -> Ve
         ui.horizontal_wrapped(|ui| {
             ui.label("flagged:");
             for &i in &flagged {
-                let (Some(name), Some(&demo)) = (names.get(i), session.model_demos().get(i)) else {
-                    continue;
-                };
-                let r = ui
-                    .button(format!("Exclude {name}"))
-                    .on_hover_text("leave this demo out of the model");
-                if r.hovered() {
-                    view.hovering = Some(i);
-                }
-                if r.clicked() {
-                    out.push(
-                        session::Command::SetIncluded {
-                            demo,
-                            included: false,
-                        }
-                        .into(),
-                    );
-                }
+                let label = format!("Exclude {}", names.get(i).map_or("", String::as_str));
+                out.extend(diagnostics::exclude_button(ui, session, i, &label, view));
             }
         });
     }
