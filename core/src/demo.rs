@@ -68,6 +68,23 @@ impl RawDemo {
         (stamps, positions)
     }
 
+    /// How far the positions spread: the diagonal of their bounding box,
+    /// metres (0 for fewer than two samples).
+    pub fn extent_m(&self) -> f64 {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in &self.positions {
+            for a in 0..3 {
+                lo[a] = lo[a].min(p[a]);
+                hi[a] = hi[a].max(p[a]);
+            }
+        }
+        if self.positions.len() < 2 {
+            return 0.0;
+        }
+        (0..3).map(|a| (hi[a] - lo[a]).powi(2)).sum::<f64>().sqrt()
+    }
+
     /// A summary for listings.
     pub fn info(&self) -> DemoInfo {
         let (stamps, positions) = self.sorted_unique();

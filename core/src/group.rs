@@ -16,8 +16,8 @@ pub enum Grouping {
     /// frame, pose index). The default.
     #[default]
     PerTopic,
-    /// Each file is a demo: its first stream in name order (narrow it with a
-    /// frame filter when a file holds several).
+    /// Each file is a demo: the stream that moves most (the largest span of
+    /// its positions; the first in name order of equals).
     PerFile,
     /// Each stream is a continuous recording cut at rest periods.
     Segmented(SegmentSettings),
@@ -28,15 +28,26 @@ pub fn group(streams: Vec<RawDemo>, grouping: &Grouping) -> Result<Vec<RawDemo>>
     match grouping {
         Grouping::PerTopic => Ok(streams),
         Grouping::PerFile => {
-            let mut out: Vec<RawDemo> = Vec::new();
+            let mut out: Vec<(f64, RawDemo)> = Vec::new();
             for s in streams {
-                if out.last().is_none_or(|d| d.file != s.file) {
-                    let mut demo = s;
-                    demo.name = file_name(&demo.file);
-                    out.push(demo);
+                let extent = s.extent_m();
+                match out.last_mut() {
+                    Some((best, d)) if d.file == s.file => {
+                        if extent > *best {
+                            *best = extent;
+                            *d = s;
+                        }
+                    }
+                    _ => out.push((extent, s)),
                 }
             }
-            Ok(out)
+            Ok(out
+                .into_iter()
+                .map(|(_, mut demo)| {
+                    demo.name = file_name(&demo.file);
+                    demo
+                })
+                .collect())
         }
         Grouping::Segmented(settings) => {
             let mut out = Vec::new();

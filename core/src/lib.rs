@@ -23,6 +23,7 @@
 //! [`std::io::Read`], the landscape engine runs in slices when asked to, and
 //! rayon is used only behind the `parallel` feature.
 
+pub mod arrange;
 pub mod demo;
 pub mod diagnostics;
 pub mod dmp;

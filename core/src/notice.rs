@@ -11,6 +11,9 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Level {
+    /// A detail behind an info notice (each of 190 skipped topics): the CLI
+    /// prints it with `-v`, the app lists it in the Recording panel.
+    Detail,
     /// Worth knowing; nothing was lost (a topic dmpscope does not read).
     Info,
     /// Something was left out or changed (a demo skipped, a file cut short).
@@ -23,7 +26,7 @@ impl Level {
     /// The prefix the CLI prints before a notice of this level.
     pub fn prefix(self) -> &'static str {
         match self {
-            Self::Info => "note",
+            Self::Detail | Self::Info => "note",
             Self::Warning => "warning",
             Self::Error => "error",
         }
@@ -40,6 +43,14 @@ pub struct Notice {
 }
 
 impl Notice {
+    /// A detail, shown when asked for.
+    pub fn detail(text: impl Into<String>) -> Self {
+        Self {
+            level: Level::Detail,
+            text: text.into(),
+        }
+    }
+
     /// An informational notice.
     pub fn info(text: impl Into<String>) -> Self {
         Self {

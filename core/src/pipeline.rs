@@ -13,8 +13,8 @@ use crate::prepare::{PrepSettings, prepare};
 
 /// What to do with a demonstration that cannot be prepared (too few samples,
 /// a non-finite value, stamps that ask for too many points). There is no
-/// default: each front end states its own (the app skips; the CLI fails
-/// unless told `--unusable skip`).
+/// default: each front end states its own (both skip; the CLI stops when
+/// told `--unusable fail`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Unusable {

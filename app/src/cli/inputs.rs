@@ -7,6 +7,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use dmpscope_core::arrange::{StreamFilter, unique_names};
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::gaps::GapPolicy;
 use dmpscope_core::group::Grouping;
@@ -66,6 +67,17 @@ pub struct LoadArgs {
     /// Keep only these TF child frames / pose indices (repeatable).
     #[arg(long = "frame", value_name = "NAME")]
     pub frames: Vec<String>,
+    /// Use only streams matching this glob (`*`, `?`; repeatable): a
+    /// topic (`/vive/*`), a topic and key (`/tf:hand`) or a key (`hand`).
+    #[arg(long = "topic", value_name = "PATTERN")]
+    pub topics: Vec<String>,
+    /// Leave out streams matching this glob (repeatable; wins over --topic).
+    #[arg(long = "exclude", value_name = "PATTERN")]
+    pub exclude: Vec<String>,
+    /// A stream whose positions span less than this (m) does not move and
+    /// is skipped.
+    #[arg(long, default_value_t = StreamFilter::default().min_extent_m, value_name = "M")]
+    pub min_extent: f64,
     /// The recording is y-up (OpenVR native), not z-up (ROS, Foxglove).
     #[arg(long)]
     pub y_up: bool,
@@ -113,6 +125,11 @@ impl LoadArgs {
                 GapsArg::Split => GapPolicy::Split,
                 GapsArg::Keep => GapPolicy::Keep,
             },
+            streams: StreamFilter {
+                topics: self.topics.clone(),
+                exclude: self.exclude.clone(),
+                min_extent_m: self.min_extent,
+            },
         }
     }
 
@@ -121,12 +138,16 @@ impl LoadArgs {
         self.load_with(load_streams)
     }
 
-    /// The demonstrations, grouped as asked.
+    /// The demonstrations, grouped as asked, their names unique.
     pub fn load_demos(&self) -> anyhow::Result<Vec<RawDemo>> {
-        let demos = self.load_with(load_source)?;
+        let mut demos = self.load_with(load_source)?;
         if demos.is_empty() {
-            anyhow::bail!("no demonstration found (segmentation found no movement between rests?)");
+            anyhow::bail!(
+                "no demonstration found: every stream was skipped (see the notes above), or \
+                 segmentation found no movement between rests"
+            );
         }
+        unique_names(&mut demos);
         Ok(demos)
     }
 
@@ -170,9 +191,9 @@ pub struct InputArgs {
     #[arg(long, default_value_t = DmpSettings::default().axis_sd_floor, value_name = "FRACTION")]
     pub axis_sd_floor: f64,
     /// A demo that cannot be used (too few samples, non-finite values):
-    /// stop, or leave it out with a warning. The CLI stops by default (a
-    /// script should not get numbers from fewer demos than it named).
-    #[arg(long, value_enum, default_value_t = UnusableArg::Fail)]
+    /// leave it out with a warning naming it and why (stop only when none
+    /// is left), or stop at the first.
+    #[arg(long, value_enum, default_value_t = UnusableArg::Skip)]
     pub unusable: UnusableArg,
 }
 

@@ -25,6 +25,9 @@ pub struct Cli {
     /// Recordings to open in the app.
     #[arg(value_name = "FILES")]
     pub files: Vec<std::path::PathBuf>,
+    /// Print details too (each skipped topic of a file that has many).
+    #[arg(short, long, global = true)]
+    pub verbose: bool,
 }
 
 /// The subcommands.
@@ -48,6 +51,7 @@ pub enum Command {
 
 /// Runs the parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
+    output::set_verbose(cli.verbose);
     match cli.command {
         None => {
             Cli::command().print_help()?;

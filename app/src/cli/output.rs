@@ -4,7 +4,9 @@ use std::io::Write;
 use std::path::Path;
 
 use anyhow::Context;
-use dmpscope_core::Notice;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use dmpscope_core::{Level, Notice};
 
 /// Writes `text` to `out` (stdout when `None` or `-`).
 pub fn write_text(out: Option<&Path>, text: &str) -> anyhow::Result<()> {
@@ -36,9 +38,20 @@ pub fn progress_bar(total: u64, what: &str) -> indicatif::ProgressBar {
     bar
 }
 
-/// Prints notices on stderr, one line each (`note: ...`, `warning: ...`).
+static VERBOSE: AtomicBool = AtomicBool::new(false);
+
+/// Whether details are printed (`-v`).
+pub fn set_verbose(on: bool) {
+    VERBOSE.store(on, Ordering::Relaxed);
+}
+
+/// Prints notices on stderr, one line each (`note: ...`, `warning: ...`);
+/// details only with `-v`.
 pub fn print_notices(notices: &[Notice]) {
+    let verbose = VERBOSE.load(Ordering::Relaxed);
     for n in notices {
-        eprintln!("{n}");
+        if n.level != Level::Detail || verbose {
+            eprintln!("{n}");
+        }
     }
 }

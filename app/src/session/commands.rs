@@ -22,6 +22,17 @@ pub enum Command {
         /// Whether it takes part in the model.
         included: bool,
     },
+    /// Include or leave out a stream of a recording over the stream filter
+    /// (the Recording panel's tick); `None` goes back to the filter's
+    /// verdict.
+    SetStreamIncluded {
+        /// The recording (an index into `Session::recordings`).
+        source: usize,
+        /// The stream's topic (`/tf:hand`).
+        topic: String,
+        /// Include, leave out, or as the filter says.
+        included: Option<bool>,
+    },
     /// Stop the landscape where it is.
     CancelLandscape,
     /// Compute the landscape again from the start.

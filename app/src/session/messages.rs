@@ -10,9 +10,10 @@ pub struct Messages {
 }
 
 impl Messages {
-    /// Adds a message unless the same one is already listed.
+    /// Adds a message unless the same one is already listed (details are
+    /// not messages: the Recording panel lists them).
     pub fn push(&mut self, notice: Notice) {
-        if !self.list.contains(&notice) {
+        if notice.level != Level::Detail && !self.list.contains(&notice) {
             self.list.push(notice);
         }
     }

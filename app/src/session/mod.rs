@@ -179,6 +179,18 @@ impl Session {
                     }
                 }
             }
+            Command::SetStreamIncluded {
+                source,
+                topic,
+                included,
+            } => {
+                if let Some(slot) = self.slots.get_mut(source) {
+                    match included {
+                        Some(on) => slot.overrides.insert(topic, on),
+                        None => slot.overrides.remove(&topic),
+                    };
+                }
+            }
             Command::CancelLandscape => {
                 if let Some(l) = &mut self.landscape
                     && let Some(mut job) = l.job.take()
@@ -222,6 +234,12 @@ impl Session {
     /// The recordings opened, in order.
     pub fn sources(&self) -> impl Iterator<Item = &Source> {
         self.slots.iter().map(|s| &s.source)
+    }
+
+    /// The recordings opened, in order, with their streams and what became
+    /// of each (the Recording panel).
+    pub fn recordings(&self) -> &[SourceSlot] {
+        &self.slots
     }
 
     /// Whether a recording is being read.

@@ -7,10 +7,9 @@
 use std::path::PathBuf;
 use std::sync::{Arc, LazyLock};
 
-use dmpscope_core::gaps::{self, GapPolicy};
-use dmpscope_core::group::{Grouping, group};
+use dmpscope_core::arrange::{Arrangement, Overrides, StreamInfo, arrange};
 use dmpscope_core::io::{LoadOptions, SourceData, SourceDemos, UpAxis, load_streams};
-use dmpscope_core::{Notice, RawDemo};
+use dmpscope_core::{Level, Notice, RawDemo};
 
 use super::jobs::{Job, Once, Runner, Update};
 
@@ -123,8 +122,9 @@ impl StreamKey {
 }
 
 /// What turns a source's streams into demos without reading again: the
-/// grouping and what a break in time does.
-type Regrouping = (Grouping, GapPolicy);
+/// topic filter, what a break in time does and the grouping, and the user's
+/// ticks in the Recording panel.
+type Regrouping = (Arrangement, Overrides);
 
 /// A loaded source's streams and the options they were read with.
 struct Streams {
@@ -138,8 +138,12 @@ pub struct SourceSlot {
     pub source: Source,
     streams: Option<Streams>,
     pending: Option<(StreamKey, Job<Result<SourceDemos, String>>)>,
-    /// The demos of the streams for a grouping and gap policy, and those.
+    /// The demos of the streams for an arrangement, and those.
     grouped: Option<(Regrouping, Result<Vec<RawDemo>, String>)>,
+    /// Every stream and what became of it, for the arrangement.
+    streams_info: Vec<StreamInfo>,
+    /// The user's choice per stream (topic), over the filter.
+    pub overrides: Overrides,
 }
 
 /// What changed in a slot during [`SourceSlot::update`].
@@ -163,6 +167,38 @@ impl SourceSlot {
             streams: None,
             pending: None,
             grouped: None,
+            streams_info: Vec::new(),
+            overrides: Overrides::new(),
+        }
+    }
+
+    /// Every stream the source holds and what became of it (empty until
+    /// loaded).
+    pub fn streams(&self) -> &[StreamInfo] {
+        &self.streams_info
+    }
+
+    /// The topics the reader skipped (their schemas hold no pose), one line
+    /// each.
+    pub fn skipped_topics(&self) -> Vec<&str> {
+        match &self.streams {
+            Some(Streams {
+                result: Ok(loaded), ..
+            }) => loaded
+                .notices
+                .iter()
+                .filter(|n| n.text.contains(": skipped topic "))
+                .map(|n| n.text.as_str())
+                .collect(),
+            _ => Vec::new(),
+        }
+    }
+
+    /// The error that stopped the source's load, if one did.
+    pub fn error(&self) -> Option<&str> {
+        match &self.streams {
+            Some(Streams { result: Err(e), .. }) => Some(e),
+            _ => None,
         }
     }
 
@@ -211,7 +247,13 @@ impl SourceSlot {
             };
             if let Some(result) = finished {
                 match &result {
-                    Ok(loaded) => news.notices.extend(loaded.notices.iter().cloned()),
+                    Ok(loaded) => news.notices.extend(
+                        loaded
+                            .notices
+                            .iter()
+                            .filter(|n| n.level != Level::Detail)
+                            .cloned(),
+                    ),
                     Err(e) => news.notices.push(Notice::error(e.clone())),
                 }
                 self.streams = Some(Streams {
@@ -225,14 +267,17 @@ impl SourceSlot {
         let Some(streams) = &self.streams else {
             return news;
         };
-        let how = (options.demos, options.gaps);
+        let how = (Arrangement::of(options), self.overrides.clone());
         if self.grouped.as_ref().is_none_or(|(g, _)| *g != how) {
             let demos = match &streams.result {
-                Ok(loaded) => {
-                    let (split, said) = gaps::apply(loaded.demos.clone(), options.gaps);
-                    news.notices.extend(said);
-                    group(split, &options.demos).map_err(|e| e.to_string())
-                }
+                Ok(loaded) => match arrange(loaded.demos.clone(), &how.0, &how.1) {
+                    Ok(arranged) => {
+                        news.notices.extend(arranged.notices);
+                        self.streams_info = arranged.streams;
+                        Ok(arranged.demos)
+                    }
+                    Err(e) => Err(e.to_string()),
+                },
                 Err(e) => Err(e.clone()),
             };
             match (&demos, &streams.result) {

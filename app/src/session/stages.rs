@@ -5,11 +5,13 @@
 
 use std::sync::Arc;
 
+use dmpscope_core::arrange::unique_names;
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::landscape::Grid;
 use dmpscope_core::presets::PAPER_PRESETS;
 use dmpscope_core::{
-    Extraction, Level, Model, PointEval, PrepSettings, Rollout, Unusable, build_model, extract,
+    Extraction, Level, Model, PointEval, PrepSettings, RawDemo, Rollout, Unusable, build_model,
+    extract,
 };
 
 use dmpscope_core::diagnostics::DiagSettings;
@@ -142,16 +144,24 @@ impl Session {
         }
         if changed {
             let excluded = &self.excluded;
-            let demos: Vec<DemoEntry> = self
+            let (sources, mut raws): (Vec<usize>, Vec<RawDemo>) = self
                 .slots
                 .iter()
                 .enumerate()
-                .flat_map(|(source, slot)| slot.demos().iter().map(move |raw| (source, raw)))
+                .flat_map(|(source, slot)| {
+                    slot.demos().iter().map(move |raw| (source, raw.clone()))
+                })
+                .unzip();
+            // Names are unique across recordings, as in the CLI.
+            unique_names(&mut raws);
+            let demos: Vec<DemoEntry> = sources
+                .into_iter()
+                .zip(raws)
                 .map(|(source, raw)| DemoEntry {
                     source,
                     info: raw.info(),
                     included: !excluded.contains(&(source, raw.name.clone())),
-                    raw: raw.clone(),
+                    raw,
                 })
                 .collect();
             // A regrouping that gives the same demos (a file that failed to

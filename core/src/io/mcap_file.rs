@@ -19,6 +19,12 @@ use crate::error::{Error, Location, Result};
 /// is an error, never an allocation.
 pub const RECORD_LENGTH_LIMIT: usize = 256 << 20;
 
+/// The first bytes of a zstd frame.
+const ZSTD_MAGIC: [u8; 4] = [0x28, 0xB5, 0x2F, 0xFD];
+
+/// The most keys (TF frames) remembered to name when `--frame` matches none.
+const KEYS_NAMED: usize = 64;
+
 /// The most bytes read from the input at once.
 pub(crate) const READ_PIECE: usize = 1 << 20;
 
@@ -60,6 +66,9 @@ pub struct LoadOptions {
     /// What to do with a clock jump or a dropout inside a stream (applied
     /// by [`super::load_source`] before the grouping).
     pub gaps: crate::gaps::GapPolicy,
+    /// Which streams are demonstrations: topic patterns and the least
+    /// movement (applied by [`super::load_source`]).
+    pub streams: crate::arrange::StreamFilter,
 }
 
 /// What one file gave.
@@ -70,8 +79,10 @@ pub struct Loaded {
     /// Topics seen but not read, with their schema names.
     pub skipped: Vec<(String, String)>,
     /// Things the user should know that did not stop the load (a truncated
-    /// file's lost tail).
+    /// file's lost tail, a `--frame` that matches nothing).
     pub warnings: Vec<String>,
+    /// Things worth knowing (messages that were compressed).
+    pub notes: Vec<String>,
 }
 
 /// Loads the demos of the MCAP file at `path` with default options.
@@ -111,9 +122,15 @@ struct Stream {
     positions: Vec<[f64; 3]>,
 }
 
+/// One stream of messages: the channels of one topic and schema (a merged
+/// recording declares a topic again on a new channel).
 struct Channel {
     topic: String,
     decoder: Box<dyn MessageDecoder>,
+    /// CDR messages, which rosbag2 may have zstd-compressed one by one.
+    cdr: bool,
+    /// Messages that came zstd-compressed.
+    compressed: usize,
     /// Messages seen, the sample index of errors.
     messages: usize,
     /// The stream of single-pose messages.
@@ -139,7 +156,14 @@ struct Collector<'o> {
     label: &'o str,
     options: &'o LoadOptions,
     schemas: BTreeMap<u16, (String, String, Vec<u8>)>,
-    channels: BTreeMap<u16, Option<Channel>>,
+    /// Channel id -> its stream in `streams` (`None`: not read).
+    channels: BTreeMap<u16, Option<usize>>,
+    streams: Vec<Channel>,
+    /// (topic, schema name) -> its stream.
+    by_topic: BTreeMap<(String, String), usize>,
+    /// Every key seen in multi-pose messages, filtered or not (to name them
+    /// when `--frame` matches none).
+    keys_seen: std::collections::BTreeSet<String>,
     skipped: Vec<(String, String)>,
     /// The first message that failed to decode. It is reported once the file
     /// is read, unless its chunk fails its CRC first (then the file is
@@ -160,7 +184,7 @@ impl Collector<'_> {
     }
 
     fn samples(&self) -> usize {
-        self.channels.values().flatten().map(Channel::samples).sum()
+        self.streams.iter().map(Channel::samples).sum()
     }
 
     /// Takes one record (from the file or from inside a chunk). Only
@@ -208,6 +232,11 @@ impl Collector<'_> {
             schema_encoding: encoding,
             schema_data: data,
         };
+        let merge_key = (ch.topic.clone(), name.to_owned());
+        if let Some(&index) = self.by_topic.get(&merge_key) {
+            self.channels.insert(ch.id, Some(index));
+            return Ok(());
+        }
         let decoder = match decoder_for(&schema) {
             Some(Ok(decoder)) => Some(decoder),
             Some(Err(reason)) => {
@@ -226,12 +255,18 @@ impl Collector<'_> {
                 None
             }
         };
-        let entry = decoder.map(|decoder| Channel {
-            topic: ch.topic.clone(),
-            decoder,
-            messages: 0,
-            unkeyed: Stream::default(),
-            keyed: BTreeMap::new(),
+        let entry = decoder.map(|decoder| {
+            self.streams.push(Channel {
+                topic: ch.topic.clone(),
+                decoder,
+                cdr: ch.message_encoding == "cdr",
+                compressed: 0,
+                messages: 0,
+                unkeyed: Stream::default(),
+                keyed: BTreeMap::new(),
+            });
+            self.by_topic.insert(merge_key, self.streams.len() - 1);
+            self.streams.len() - 1
         });
         self.channels.insert(ch.id, entry);
         Ok(())
@@ -240,7 +275,7 @@ impl Collector<'_> {
     fn message(&mut self, header: &mcap::records::MessageHeader, data: &[u8]) -> Result<()> {
         let label = self.label;
         let options = self.options;
-        let Some(slot) = self.channels.get_mut(&header.channel_id) else {
+        let Some(slot) = self.channels.get(&header.channel_id) else {
             return Err(Error::Mcap {
                 at: Location::file(label),
                 reason: format!(
@@ -249,7 +284,7 @@ impl Collector<'_> {
                 ),
             });
         };
-        let Some(channel) = slot else {
+        let Some(channel) = slot.and_then(|i| self.streams.get_mut(i)) else {
             return Ok(());
         };
         if self.pending.is_some() {
@@ -257,6 +292,30 @@ impl Collector<'_> {
         }
         let index = channel.messages;
         channel.messages += 1;
+        let inflated;
+        let data = if channel.cdr && data.starts_with(&ZSTD_MAGIC) {
+            channel.compressed += 1;
+            match zstd::stream::decode_all(data) {
+                Ok(bytes) => {
+                    inflated = bytes;
+                    inflated.as_slice()
+                }
+                Err(e) => {
+                    self.pending = Some(Error::Decode {
+                        at: Location::file(label).topic(&channel.topic).sample(index),
+                        reason: format!(
+                            "the message is zstd-compressed (rosbag2 message compression) but \
+                             does not decompress ({e}); `ros2 bag decompress` writes an \
+                             uncompressed copy"
+                        ),
+                    });
+                    return Ok(());
+                }
+            }
+        } else {
+            data
+        };
+        let keys_seen = &mut self.keys_seen;
         let log_time = i64::try_from(header.log_time).unwrap_or(i64::MAX);
         let mut bad: Option<(Option<String>, usize)> = None;
         let Channel {
@@ -269,9 +328,13 @@ impl Collector<'_> {
         let decoded = decoder.decode(data, &mut |sample| {
             if let Some(k) = &sample.key
                 && !options.frames.is_empty()
-                && !options.frames.iter().any(|f| f == k)
             {
-                return;
+                if !keys_seen.contains(k.as_ref()) && keys_seen.len() < KEYS_NAMED {
+                    keys_seen.insert(k.clone().into_owned());
+                }
+                if !options.frames.iter().any(|f| f == k) {
+                    return;
+                }
             }
             if let Some(axis) = sample.position.iter().position(|v| !v.is_finite()) {
                 bad.get_or_insert((sample.key.map(|k| k.into_owned()), axis));
@@ -357,16 +420,20 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
         options,
         schemas: BTreeMap::new(),
         channels: BTreeMap::new(),
+        streams: Vec::new(),
+        by_topic: BTreeMap::new(),
+        keys_seen: std::collections::BTreeSet::new(),
         skipped: Vec::new(),
         pending: None,
     };
     let mut warnings = Vec::new();
+    let mut truncated = None;
     let mut bytes_read: u64 = 0;
     while let Some(event) = reader.next_event() {
         let event = match event {
             Ok(event) => event,
             Err(mcap::McapError::UnexpectedEof) if c.pending.is_none() && c.samples() > 0 => {
-                warnings.push(format!(
+                truncated = Some(format!(
                     "{label}: the file is truncated (it ends inside a record after {bytes_read} bytes); \
                      kept the {} messages of its complete chunks, the rest is lost",
                     c.samples()
@@ -399,8 +466,16 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
     let file_name = std::path::Path::new(label)
         .file_name()
         .map_or_else(|| label.to_owned(), |n| n.to_string_lossy().into_owned());
+    let mut notes = Vec::new();
     let mut streams: Vec<(String, Option<String>, Stream)> = Vec::new();
-    for channel in c.channels.into_values().flatten() {
+    for channel in c.streams {
+        if channel.compressed > 0 {
+            notes.push(format!(
+                "{label}: {}: {} messages were zstd-compressed (rosbag2 message compression): \
+                 decompressed while reading",
+                channel.topic, channel.compressed
+            ));
+        }
         streams.push((channel.topic.clone(), None, channel.unkeyed));
         for (key, stream) in channel.keyed {
             streams.push((channel.topic.clone(), Some(key), stream));
@@ -414,17 +489,74 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
         .collect();
     let mut skipped = c.skipped;
     skipped.sort();
+    let unmatched: Vec<&String> = options
+        .frames
+        .iter()
+        .filter(|f| {
+            !demos
+                .iter()
+                .any(|d| d.topic.rsplit_once(':').is_some_and(|(_, k)| k == *f))
+        })
+        .collect();
+    if !unmatched.is_empty() && !c.keys_seen.is_empty() {
+        let names: Vec<&str> = c.keys_seen.iter().map(String::as_str).collect();
+        let what = format!(
+            "--frame {} matches no frame here; the frames are: {}",
+            unmatched
+                .iter()
+                .map(|f| f.as_str())
+                .collect::<Vec<_>>()
+                .join(", "),
+            names.join(", ")
+        );
+        if demos.is_empty() {
+            return Err(Error::Source {
+                path: label.to_owned(),
+                reason: what,
+            });
+        }
+        warnings.push(format!("{label}: {what}"));
+    }
     if demos.is_empty() {
         return Err(Error::NoDemos {
             file: label.to_owned(),
             skipped,
         });
     }
+    if let Some(mut text) = truncated {
+        text.push_str(&cut_short(&demos));
+        warnings.push(text);
+    }
     Ok(Loaded {
         demos,
         skipped,
         warnings,
+        notes,
     })
+}
+
+/// The streams a truncated file cut short: those still sending when it
+/// ends (their last message within max(1 s, 10 of their intervals) of the
+/// file's last one).
+fn cut_short(demos: &[RawDemo]) -> String {
+    let last = |d: &RawDemo| d.stamps_ns.iter().copied().max();
+    let Some(end) = demos.iter().filter_map(last).max() else {
+        return String::new();
+    };
+    let names: Vec<String> = demos
+        .iter()
+        .filter(|d| {
+            let h = crate::demo::median(&crate::demo::stamp_intervals_s(&d.sorted_unique().0));
+            let window = (1.0f64).max(10.0 * h);
+            last(d).is_some_and(|t| (end - t) as f64 * 1e-9 <= window)
+        })
+        .map(|d| format!("{} ({} samples)", d.topic, d.stamps_ns.len()))
+        .collect();
+    if names.is_empty() {
+        String::new()
+    } else {
+        format!("; cut short: {}", names.join(", "))
+    }
 }
 
 /// Chooses the time source of one stream (method.md section 2.1): header

@@ -17,6 +17,7 @@ pub mod foxglove_schemas;
 pub mod mcap_file;
 pub mod ros1;
 pub mod ros2;
+pub mod rosbag2;
 pub mod source;
 pub mod write;
 

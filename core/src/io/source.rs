@@ -4,19 +4,19 @@
 //! the app both load through [`load_source`], so the same file with the same
 //! [`LoadOptions`] gives the same demonstrations in both.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use super::csv::load_csv;
-use super::mcap_file::{
-    LoadOptions, Loaded, READ_PIECE, load_bytes_with, load_path_with, load_reader,
-};
+use super::mcap_file::{LoadOptions, Loaded, load_bytes_with};
+use super::rosbag2::{self, Folder, ROSBAG2_METADATA};
+use crate::arrange::{Arrangement, Overrides, arrange};
 use crate::demo::RawDemo;
 use crate::error::{Error, Result};
-use crate::group::group;
 use crate::notice::Notice;
 
-/// The file name that marks a rosbag2 folder.
-pub const ROSBAG2_METADATA: &str = "metadata.yaml";
+/// Up to this many skipped topics are named one line each; more are one
+/// line with their count (the names as details).
+pub const SKIPPED_LISTED: usize = 3;
 
 /// Where a recording's contents are.
 #[derive(Clone, Copy, Debug)]
@@ -36,6 +36,8 @@ pub struct SourceDemos {
     pub demos: Vec<RawDemo>,
     /// Topics skipped, a truncated file's lost tail, and the like.
     pub notices: Vec<Notice>,
+    /// Every stream and what became of it (filled by [`load_source`]).
+    pub streams: Vec<crate::arrange::StreamInfo>,
 }
 
 /// Loads the streams of a source (one per topic and key), with the frame
@@ -53,6 +55,16 @@ pub fn load_streams(
             })?;
             Ok(csv_demo(name, text, options)?)
         }
+        SourceData::Bytes(bytes) if rosbag2::is_zstd(name) => {
+            let inflated = zstd::stream::decode_all(bytes).map_err(|e| Error::Source {
+                path: name.to_owned(),
+                reason: format!(
+                    "a zstd-compressed file that does not decompress ({e}); `zstd -d` writes \
+                     an uncompressed copy"
+                ),
+            })?;
+            Ok(from_mcap(name, load_bytes_with(name, &inflated, options)?))
+        }
         SourceData::Bytes(bytes) => Ok(from_mcap(name, load_bytes_with(name, bytes, options)?)),
         SourceData::Path(path) => {
             let path = folder_of_metadata(path).unwrap_or(path);
@@ -66,71 +78,74 @@ pub fn load_streams(
                 })?;
                 return csv_demo(name, &text, options);
             }
-            let file = std::fs::File::open(path).map_err(|source| Error::Io {
-                file: name.to_owned(),
-                source,
-            })?;
-            let reader = std::io::BufReader::with_capacity(READ_PIECE, file);
-            Ok(from_mcap(name, load_reader(name, reader, options)?))
+            Ok(from_mcap(name, rosbag2::read_file(path, name, options)?))
         }
     }
 }
 
-/// Loads a source, splits its streams at breaks in time (or bridges them)
-/// as `options.gaps` says, and groups them into demonstrations as
-/// `options.demos` says (method.md sections 1 and 11). Neither crosses
-/// files, so loading sources one by one and pooling them gives the same
-/// demonstrations as loading them together.
+/// Loads a source and arranges its streams into demonstrations
+/// ([`crate::arrange`]: the topic patterns, breaks in time split or
+/// bridged, still and timeless streams skipped, the grouping; method.md
+/// sections 1 and 11). Nothing crosses sources, so loading sources one by
+/// one and pooling them gives the same demonstrations as loading them
+/// together (pooled names are made unique by
+/// [`crate::arrange::unique_names`]).
 pub fn load_source(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Result<SourceDemos> {
     let mut loaded = load_streams(name, data, options)?;
-    let (streams, said) = crate::gaps::apply(std::mem::take(&mut loaded.demos), options.gaps);
-    loaded.notices.extend(said);
-    loaded.demos = group(streams, &options.demos)?;
+    let arranged = arrange(
+        std::mem::take(&mut loaded.demos),
+        &Arrangement::of(options),
+        &Overrides::new(),
+    )?;
+    loaded.notices.extend(arranged.notices);
+    loaded.demos = arranged.demos;
+    loaded.streams = arranged.streams;
     Ok(loaded)
 }
 
-/// The `.mcap` files a folder holds, sorted by name (a rosbag2 folder's
-/// split files included); an error naming the folder when there is none.
-pub fn folder_files(folder: &Path) -> Result<Vec<PathBuf>> {
-    let io = |source| Error::Io {
-        file: folder.display().to_string(),
-        source,
-    };
-    let mut mcap = Vec::new();
-    let mut db3 = false;
-    for entry in std::fs::read_dir(folder).map_err(io)? {
-        let path = entry.map_err(io)?.path();
-        if has_extension(&path, "mcap") {
-            mcap.push(path);
-        } else if has_extension(&path, "db3") {
-            db3 = true;
+fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
+    match rosbag2::classify(folder)? {
+        Folder::Bag(files) => {
+            let label = folder.display().to_string();
+            Ok(from_mcap(
+                &label,
+                rosbag2::read_bag(folder, &files, options)?,
+            ))
+        }
+        Folder::Recordings { files, folders } => {
+            let mut out = SourceDemos::default();
+            for file in files {
+                let label = file.display().to_string();
+                let loaded = from_mcap(&label, rosbag2::read_file(&file, &label, options)?);
+                out.demos.extend(loaded.demos);
+                out.notices.extend(loaded.notices);
+            }
+            for sub in folders {
+                match load_folder(&sub, options) {
+                    Ok(loaded) => {
+                        out.demos.extend(loaded.demos);
+                        out.notices.extend(loaded.notices);
+                    }
+                    // A sub-folder without recordings is not an error of the
+                    // folder the user named.
+                    Err(Error::Source { path, reason }) => {
+                        out.notices
+                            .push(Notice::info(format!("{path}: skipped: {reason}")));
+                    }
+                    Err(e) => return Err(e),
+                }
+            }
+            if out.demos.is_empty() {
+                return Err(Error::Source {
+                    path: folder.display().to_string(),
+                    reason: "holds no recording with a pose topic (its files and sub-folders \
+                             were read; see the notes)"
+                        .to_owned(),
+                });
+            }
+            Ok(out)
         }
     }
-    mcap.sort();
-    if mcap.is_empty() {
-        let reason = if db3 {
-            "holds a rosbag2 recording in SQLite (.db3), which dmpscope does not read: \
-             convert it with `ros2 bag convert` to MCAP storage"
-        } else {
-            "folder holds no .mcap file"
-        };
-        return Err(Error::Source {
-            path: folder.display().to_string(),
-            reason: reason.to_owned(),
-        });
-    }
-    Ok(mcap)
-}
-
-fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
-    let mut out = SourceDemos::default();
-    for file in folder_files(folder)? {
-        let label = file.display().to_string();
-        let loaded = from_mcap(&label, load_path_with(&file, options)?);
-        out.demos.extend(loaded.demos);
-        out.notices.extend(loaded.notices);
-    }
-    Ok(out)
 }
 
 /// A path naming a rosbag2 folder's `metadata.yaml` stands for the folder.
@@ -148,20 +163,33 @@ fn csv_demo(name: &str, text: &str, options: &LoadOptions) -> Result<SourceDemos
     }
     Ok(SourceDemos {
         demos: vec![demo],
-        notices: Vec::new(),
+        ..SourceDemos::default()
     })
 }
 
 fn from_mcap(file: &str, loaded: Loaded) -> SourceDemos {
-    let mut notices: Vec<Notice> = loaded
-        .skipped
-        .iter()
-        .map(|(topic, schema)| Notice::info(format!("{file}: skipped topic {topic} ({schema})")))
-        .collect();
+    let each =
+        |(topic, schema): &(String, String)| format!("{file}: skipped topic {topic} ({schema})");
+    let mut notices: Vec<Notice> = if loaded.skipped.len() > SKIPPED_LISTED {
+        let mut n = vec![Notice::info(format!(
+            "{file}: skipped {} topics that hold no pose dmpscope reads (-v names them)",
+            loaded.skipped.len()
+        ))];
+        n.extend(loaded.skipped.iter().map(|s| Notice::detail(each(s))));
+        n
+    } else {
+        loaded
+            .skipped
+            .iter()
+            .map(|s| Notice::info(each(s)))
+            .collect()
+    };
+    notices.extend(loaded.notes.into_iter().map(Notice::info));
     notices.extend(loaded.warnings.into_iter().map(Notice::warning));
     SourceDemos {
         demos: loaded.demos,
         notices,
+        streams: Vec::new(),
     }
 }
 

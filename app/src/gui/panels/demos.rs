@@ -12,7 +12,7 @@ use crate::session::{self, Session};
 /// The colour of a message of `level`.
 pub fn level_colour(level: Level) -> Color32 {
     match level {
-        Level::Info => Color32::from_rgb(150, 180, 220),
+        Level::Detail | Level::Info => Color32::from_rgb(150, 180, 220),
         Level::Warning => Color32::from_rgb(240, 180, 80),
         Level::Error => Color32::from_rgb(240, 120, 100),
     }
