@@ -357,7 +357,10 @@ fn help_lists_the_app_and_the_subcommands() {
     let out = dmpscope(&["--help"]);
     assert!(out.status.success());
     let help = text(&out.stdout);
-    assert!(help.contains("Usage: dmpscope [FILES]..."), "{help}");
+    assert!(
+        help.contains("Usage: dmpscope [OPTIONS] [FILES]..."),
+        "{help}"
+    );
     for sub in [
         "info",
         "landscape",

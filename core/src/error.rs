@@ -56,13 +56,13 @@ impl fmt::Display for Location {
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// The file could not be read from disk.
-    #[error("{file}: {source}")]
+    #[error("{file}: {reason}")]
     Io {
         /// The file.
         file: String,
-        /// The operating system's error.
-        #[source]
-        source: std::io::Error,
+        /// The operating system's error (shown in the message, not chained
+        /// again as a source, so it is printed once).
+        reason: std::io::Error,
     },
     /// The file is not a readable MCAP file (bad magic, truncated, bad CRC, ...).
     #[error("{at}: not a readable MCAP file: {reason}")]

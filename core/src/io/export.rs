@@ -12,10 +12,23 @@ use super::foxglove_json::{encode_pose_in_frame_json, json_schema};
 use super::foxglove_schemas::FoxgloveSchema;
 use crate::model::Model;
 
+/// The channel metadata key holding a demo's name: loading an export gives
+/// the demo back under it.
+pub const NAME_KEY: &str = "dmpscope.name";
+/// The channel metadata key saying what a path is (`demonstration`,
+/// `regenerated`); a regenerated path is not loaded as a demo.
+pub const ROLE_KEY: &str = "dmpscope.role";
+/// The role of a regenerated path.
+pub const ROLE_REGENERATED: &str = "regenerated";
+
 /// A path to export: its topic and `(stamp_ns, position)` samples.
 pub struct ExportPath {
     /// The topic, e.g. `/demo/demo_01`.
     pub topic: String,
+    /// The demo's name, kept as channel metadata ([`NAME_KEY`]).
+    pub name: String,
+    /// `demonstration` or `regenerated` ([`ROLE_KEY`]).
+    pub role: &'static str,
     /// Samples in time order.
     pub samples: Vec<(i64, [f64; 3])>,
 }
@@ -29,16 +42,26 @@ pub fn regenerated_paths(
     km: f64,
 ) -> Vec<ExportPath> {
     let mut out = Vec::new();
+    let mut taken = std::collections::HashSet::new();
     for (i, demo) in model.demos().iter().enumerate() {
         let start = first_stamps_ns.get(i).copied().unwrap_or(0);
         let n = demo.len();
         let stamp =
             |k: usize| start + (demo.duration_s * k as f64 / (n - 1) as f64 * 1e9).round() as i64;
         let absolute = |p: [f64; 3]| std::array::from_fn(|ax| p[ax] + demo.p0[ax]);
-        let short = topic_safe(&demo.name);
+        // Every demo on its own topic, whatever its name reduces to.
+        let base = topic_safe(&demo.name);
+        let mut short = base.clone();
+        let mut n = 1;
+        while !taken.insert(short.clone()) {
+            n += 1;
+            short = format!("{base}_{n}");
+        }
         let rollout = model.rollout(i, dm, km);
         out.push(ExportPath {
             topic: format!("/demo/{short}"),
+            name: demo.name.clone(),
+            role: "demonstration",
             samples: demo
                 .y_raw
                 .iter()
@@ -48,6 +71,8 @@ pub fn regenerated_paths(
         });
         out.push(ExportPath {
             topic: format!("/regen/{short}"),
+            name: demo.name.clone(),
+            role: ROLE_REGENERATED,
             samples: rollout
                 .y
                 .iter()
@@ -59,12 +84,13 @@ pub fn regenerated_paths(
     out
 }
 
-/// A demo name as a topic segment: `reach10.mcap:/demo_01` -> `reach10_demo_01`.
+/// A demo name as a topic segment: `reach10.mcap:/demo_01` ->
+/// `reach10_demo_01`; letters of any script are kept (`/händ_links`).
 pub fn topic_safe(name: &str) -> String {
     let name = name.strip_suffix(".mcap").unwrap_or(name);
     let mut out = String::with_capacity(name.len());
     for c in name.replace(".mcap:", "_").chars() {
-        let keep = c.is_ascii_alphanumeric() || c == '_' || c == '-';
+        let keep = c.is_alphanumeric() || c == '_' || c == '-';
         if keep {
             out.push(c);
         } else if !out.ends_with('_') {
@@ -92,7 +118,11 @@ pub fn write_pose_in_frame_json<W: Write + Seek>(
     )?;
     let mut messages = Vec::new();
     for path in paths {
-        let channel_id = writer.add_channel(schema, &path.topic, "json", &BTreeMap::new())?;
+        let meta = BTreeMap::from([
+            (NAME_KEY.to_owned(), path.name.clone()),
+            (ROLE_KEY.to_owned(), path.role.to_owned()),
+        ]);
+        let channel_id = writer.add_channel(schema, &path.topic, "json", &meta)?;
         for (sequence, &(stamp, position)) in path.samples.iter().enumerate() {
             messages.push((stamp, channel_id, sequence as u32, position));
         }

@@ -93,9 +93,9 @@ pub fn load_path(path: &std::path::Path) -> Result<Loaded> {
 /// Loads the demos of the MCAP file at `path` (named by its path in errors).
 pub fn load_path_with(path: &std::path::Path, options: &LoadOptions) -> Result<Loaded> {
     let label = path.display().to_string();
-    let file = std::fs::File::open(path).map_err(|source| Error::Io {
+    let file = std::fs::File::open(path).map_err(|reason| Error::Io {
         file: label.clone(),
-        source,
+        reason,
     })?;
     load_reader(
         &label,
@@ -126,6 +126,8 @@ struct Stream {
 /// recording declares a topic again on a new channel).
 struct Channel {
     topic: String,
+    /// The demo's name, when the file says it (a dmpscope export).
+    name: Option<String>,
     decoder: Box<dyn MessageDecoder>,
     /// CDR messages, which rosbag2 may have zstd-compressed one by one.
     cdr: bool,
@@ -232,6 +234,16 @@ impl Collector<'_> {
             schema_encoding: encoding,
             schema_data: data,
         };
+        if ch.metadata.get(super::export::ROLE_KEY).map(String::as_str)
+            == Some(super::export::ROLE_REGENERATED)
+        {
+            self.skipped.push((
+                ch.topic.clone(),
+                "a path dmpscope regenerated, not a demonstration".to_owned(),
+            ));
+            self.channels.insert(ch.id, None);
+            return Ok(());
+        }
         let merge_key = (ch.topic.clone(), name.to_owned());
         if let Some(&index) = self.by_topic.get(&merge_key) {
             self.channels.insert(ch.id, Some(index));
@@ -258,6 +270,7 @@ impl Collector<'_> {
         let entry = decoder.map(|decoder| {
             self.streams.push(Channel {
                 topic: ch.topic.clone(),
+                name: ch.metadata.get(super::export::NAME_KEY).cloned(),
                 decoder,
                 cdr: ch.message_encoding == "cdr",
                 compressed: 0,
@@ -447,9 +460,9 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
                 // `insert` zero-fills what it is asked for: ask in bounded
                 // pieces so a declared length is never allocated up front.
                 let buf = reader.insert(need.min(READ_PIECE));
-                let n = read_some(&mut input, buf).map_err(|source| Error::Io {
+                let n = read_some(&mut input, buf).map_err(|reason| Error::Io {
                     file: label.to_owned(),
-                    source,
+                    reason,
                 })?;
                 bytes_read += n as u64;
                 reader.notify_read(n);
@@ -468,6 +481,7 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
         .map_or_else(|| label.to_owned(), |n| n.to_string_lossy().into_owned());
     let mut notes = Vec::new();
     let mut streams: Vec<(String, Option<String>, Stream)> = Vec::new();
+    let mut names: BTreeMap<String, String> = BTreeMap::new();
     for channel in c.streams {
         if channel.compressed > 0 {
             notes.push(format!(
@@ -475,6 +489,9 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
                  decompressed while reading",
                 channel.topic, channel.compressed
             ));
+        }
+        if let Some(name) = channel.name {
+            names.insert(channel.topic.clone(), name);
         }
         streams.push((channel.topic.clone(), None, channel.unkeyed));
         for (key, stream) in channel.keyed {
@@ -485,7 +502,14 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
     let demos: Vec<RawDemo> = streams
         .into_iter()
         .filter(|(_, _, s)| !s.positions.is_empty())
-        .map(|(topic, key, s)| finish_stream(label, &file_name, topic, key, s))
+        .map(|(topic, key, s)| {
+            let given = key.is_none().then(|| names.get(&topic).cloned()).flatten();
+            let mut demo = finish_stream(label, &file_name, topic, key, s);
+            if let Some(name) = given {
+                demo.name = name;
+            }
+            demo
+        })
         .collect();
     let mut skipped = c.skipped;
     skipped.sort();

@@ -47,9 +47,9 @@ pub fn is_zstd(name: &str) -> bool {
 
 /// Looks at a folder: a bag or a folder of recordings.
 pub fn classify(folder: &Path) -> Result<Folder> {
-    let io = |source| Error::Io {
+    let io = |reason| Error::Io {
         file: folder.display().to_string(),
-        source,
+        reason,
     };
     let mut files = Vec::new();
     let mut folders = Vec::new();
@@ -71,9 +71,9 @@ pub fn classify(folder: &Path) -> Result<Folder> {
     folders.sort();
     let metadata = folder.join(ROSBAG2_METADATA);
     if metadata.is_file() {
-        let text = std::fs::read_to_string(&metadata).map_err(|source| Error::Io {
+        let text = std::fs::read_to_string(&metadata).map_err(|reason| Error::Io {
             file: metadata.display().to_string(),
-            source,
+            reason,
         })?;
         let listed = listed_files(&text);
         if !listed.is_empty() {
@@ -185,9 +185,9 @@ fn unquote(s: &str) -> String {
 
 /// Reads one MCAP file, decompressing a `.mcap.zstd` as it goes.
 pub fn read_file(path: &Path, label: &str, options: &LoadOptions) -> Result<Loaded> {
-    let file = std::fs::File::open(path).map_err(|source| Error::Io {
+    let file = std::fs::File::open(path).map_err(|reason| Error::Io {
         file: label.to_owned(),
-        source,
+        reason,
     })?;
     let buffered = std::io::BufReader::with_capacity(READ_PIECE, file);
     if is_zstd(label) {

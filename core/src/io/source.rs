@@ -72,9 +72,9 @@ pub fn load_streams(
                 return load_folder(path, options);
             }
             if is_csv(name) || has_extension(path, "csv") {
-                let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+                let text = std::fs::read_to_string(path).map_err(|reason| Error::Io {
                     file: name.to_owned(),
-                    source,
+                    reason,
                 })?;
                 return csv_demo(name, &text, options);
             }
