@@ -102,7 +102,7 @@ pub fn classify(folder: &Path) -> Result<Folder> {
             return Ok(Folder::Bag(by_split_index(files)));
         }
     }
-    if files.len() > 1 && files.iter().all(|f| split_index(folder, f).is_some()) {
+    if !files.is_empty() && files.iter().all(|f| split_index(folder, f).is_some()) {
         return Ok(Folder::Bag(by_split_index(files)));
     }
     if files.is_empty() && folders.is_empty() {
