@@ -2,7 +2,8 @@
 //! loads, the landscape fills, a preset button moves the operating point, a
 //! drag on the J map moves it again, changing k changes J and the optimum
 //! without recomputing the landscape, a rosbag2 folder opens, a folder with
-//! nothing usable says so. Jobs run inline (`Runner::inline`), so every
+//! nothing usable says so, the Recording panel lists skipped streams and a
+//! tick there recomputes the landscape. Jobs run inline (`Runner::inline`), so every
 //! frame finishes the work it starts and no test sleeps; one test runs the
 //! real background threads.
 
@@ -172,6 +173,51 @@ fn a_rosbag2_folder_opens_as_in_the_cli() {
     // Its metadata.yaml opens the same folder (what a file dialog picks).
     add(&mut h, vec![Source::Path(bag.join("metadata.yaml"))]);
     assert_eq!(h.state().session().demos().len(), 8);
+}
+
+#[test]
+fn the_recording_panel_shows_skipped_streams_and_a_tick_recomputes_the_landscape() {
+    let source = Source::Bytes {
+        name: "tf.mcap".into(),
+        bytes: support::tf_bag_bytes().into(),
+    };
+    let mut h = harness_on(vec![source], Runner::inline());
+    h.run_steps(2);
+    let names = |h: &Harness<'_, DmpApp>| -> Vec<String> {
+        let s = h.state().session();
+        s.model_demos()
+            .iter()
+            .map(|&i| s.demos()[i].info.name.clone())
+            .collect()
+    };
+    assert_eq!(names(&h), ["tf.mcap:/hand", "tf.mcap:/tf:tracker"]);
+    h.get_by_label("Recording").click();
+    h.run_steps(2);
+    let _summary = h.get_by_label_contains("tf.mcap: 2 of 4 streams kept");
+    let _static = h.get_by_label("/tf_static:base_link");
+    let _why = h.get_by_label("skipped: its stamp never advances (no duration)");
+    let _still =
+        h.get_by_label("skipped: it does not move (its positions span 0.0 mm, less than 10.0 mm)");
+    let before = h.state().session().runs();
+    assert!(h.state().session().landscape_complete());
+    h.get_by_label("/hand").click();
+    h.run_steps(3);
+    assert_eq!(names(&h), ["tf.mcap:/tf:tracker"]);
+    let after = h.state().session().runs();
+    assert_eq!(
+        after.loads, before.loads,
+        "a tick regroups, it does not read again"
+    );
+    assert_eq!(after.landscapes, before.landscapes + 1);
+    assert!(h.state().session().landscape_complete());
+    assert_eq!(
+        h.state().session().model().map(|m| m.demos().len()),
+        Some(1)
+    );
+    // Back to the filter's verdict.
+    h.get_by_label("as filtered").click();
+    h.run_steps(3);
+    assert_eq!(names(&h), ["tf.mcap:/hand", "tf.mcap:/tf:tracker"]);
 }
 
 #[test]

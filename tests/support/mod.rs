@@ -98,3 +98,87 @@ pub fn rosbag2_folder(name: &str, splits: &[(usize, usize)], short: bool) -> Pat
     std::fs::write(dir.join("metadata.yaml"), metadata).expect("metadata");
     dir
 }
+
+/// A TF bag as `ros2 bag record -a` writes it: `/tf` with a moving
+/// `tracker` and a still `shoulder_link`, `/tf_static` with one message,
+/// and a moving `/hand` PoseStamped topic (another reach, 1 s later).
+pub fn tf_bag_bytes() -> Vec<u8> {
+    use dmpscope_core::io::ros2::{self, StampedTransform};
+    use mcap::records::MessageHeader;
+    let epoch: i64 = 1_700_000_000_000_000_000;
+    let reach = |t0: i64, scale: f64| -> Vec<(i64, [f64; 3])> {
+        (0..160)
+            .map(|k| {
+                let s = k as f64 / 159.0;
+                let m = 10.0 * s.powi(3) - 15.0 * s.powi(4) + 6.0 * s.powi(5);
+                (
+                    t0 + k * 11_111_111,
+                    [0.3 + 0.4 * scale * m, 0.1 * m, 1.0 + 0.05 * m * scale],
+                )
+            })
+            .collect()
+    };
+    let mut w = mcap::WriteOptions::new()
+        .profile("ros2")
+        .create(std::io::Cursor::new(Vec::new()))
+        .expect("writer");
+    let tf = w
+        .add_schema(
+            "tf2_msgs/msg/TFMessage",
+            "ros2msg",
+            ros2::TF_MESSAGE_SCHEMA.as_bytes(),
+        )
+        .expect("schema");
+    let pose = w
+        .add_schema(
+            "geometry_msgs/msg/PoseStamped",
+            "ros2msg",
+            ros2::POSE_STAMPED_SCHEMA.as_bytes(),
+        )
+        .expect("schema");
+    let meta = std::collections::BTreeMap::new();
+    let tf_id = w.add_channel(tf, "/tf", "cdr", &meta).expect("channel");
+    let static_id = w
+        .add_channel(tf, "/tf_static", "cdr", &meta)
+        .expect("channel");
+    let hand_id = w.add_channel(pose, "/hand", "cdr", &meta).expect("channel");
+    let mut put = |id: u16, seq: usize, t: i64, data: &[u8]| {
+        let time = u64::try_from(t).expect("stamp");
+        let header = MessageHeader {
+            channel_id: id,
+            sequence: seq as u32,
+            log_time: time,
+            publish_time: time,
+        };
+        w.write_to_known_channel(&header, data).expect("message");
+    };
+    let statics = [StampedTransform {
+        stamp_ns: epoch,
+        frame_id: "world",
+        child_frame_id: "base_link",
+        translation: [0.1, 0.0, 0.0],
+    }];
+    put(static_id, 0, epoch, &ros2::encode_tf_message(&statics));
+    for (k, (t, p)) in reach(epoch, 1.0).into_iter().enumerate() {
+        let ts = [
+            StampedTransform {
+                stamp_ns: t,
+                frame_id: "world",
+                child_frame_id: "tracker",
+                translation: p,
+            },
+            StampedTransform {
+                stamp_ns: t,
+                frame_id: "base_link",
+                child_frame_id: "shoulder_link",
+                translation: [0.0, 0.0, 0.3],
+            },
+        ];
+        put(tf_id, k, t, &ros2::encode_tf_message(&ts));
+    }
+    for (k, (t, p)) in reach(epoch + 2_000_000_000, 0.8).into_iter().enumerate() {
+        put(hand_id, k, t, &ros2::encode_pose_stamped(t, "world", p));
+    }
+    w.finish().expect("finish");
+    w.into_inner().into_inner()
+}

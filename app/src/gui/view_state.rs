@@ -68,6 +68,10 @@ pub struct ViewState {
     pub rl: RlChoices,
     /// The frame filter as typed (applied on Enter or leaving the field).
     pub frames_text: String,
+    /// The topic patterns as typed.
+    pub topics_text: String,
+    /// The exclude patterns as typed.
+    pub exclude_text: String,
     /// The segmentation thresholds, kept while demos are not segmented.
     pub segment: SegmentSettings,
     /// The model the views were set up for.
@@ -89,6 +93,8 @@ impl ViewState {
             pareto: Default::default(),
             rl: RlChoices::default(),
             frames_text: String::new(),
+            topics_text: String::new(),
+            exclude_text: String::new(),
             segment: SegmentSettings::default(),
             model_seen: None,
         }

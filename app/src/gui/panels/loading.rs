@@ -1,5 +1,6 @@
 //! How recordings are read, as on the command line (`--y-up`, `--frame`,
-//! `--demos`, `--rest-speed`, `--min-rest`, `--min-demo`, `--gaps`):
+//! `--topic`, `--exclude`, `--min-extent`, `--demos`, `--rest-speed`,
+//! `--min-rest`, `--min-demo`, `--gaps`):
 //! changing the up axis or the frame filter reads the recordings again,
 //! changing what a demo is or what a break in time does only regroups what
 //! was read.
@@ -24,27 +25,45 @@ pub fn loading_ui(ui: &mut egui::Ui, s: &mut Settings, view: &mut ViewState) {
                 .on_hover_text("y up: OpenVR's native frame, turned to z up");
         });
         ui.end_row();
-        let l = ui.label("frames");
-        let typed = ui
+        list_field(
+            ui,
+            "frames",
+            &mut view.frames_text,
+            &mut load.frames,
+            "all (or: hand_left, 1, ...)",
+            "TF child frames or pose indices to keep, comma separated; Enter applies",
+        );
+        list_field(
+            ui,
+            "topics",
+            &mut view.topics_text,
+            &mut load.streams.topics,
+            "all (or: /vive/*, /tf:hand)",
+            "streams to use: glob patterns (* and ?) matching a topic, topic:key or key, \
+             comma separated; Enter applies",
+        );
+        list_field(
+            ui,
+            "exclude",
+            &mut view.exclude_text,
+            &mut load.streams.exclude,
+            "none (or: /tf_static, *_link)",
+            "streams to leave out: glob patterns, comma separated; wins over topics",
+        );
+        let l = ui.label("least movement");
+        let mut mm = load.streams.min_extent_m * 1e3;
+        if ui
             .add(
-                egui::TextEdit::singleline(&mut view.frames_text)
-                    .hint_text("all (or: hand_left, 1, ...)")
-                    .desired_width(160.0),
+                egui::DragValue::new(&mut mm)
+                    .speed(0.5)
+                    .range(0.0..=1000.0)
+                    .suffix(" mm"),
             )
             .labelled_by(l.id)
-            .on_hover_text(
-                "TF child frames or pose indices to keep, comma separated; Enter applies",
-            );
-        if typed.lost_focus() {
-            load.frames = view
-                .frames_text
-                .split(',')
-                .map(str::trim)
-                .filter(|f| !f.is_empty())
-                .map(str::to_owned)
-                .collect();
-        } else if !typed.has_focus() {
-            view.frames_text = load.frames.join(", ");
+            .on_hover_text("a stream whose positions span less than this does not move: skipped")
+            .changed()
+        {
+            load.streams.min_extent_m = mm * 1e-3;
         }
         ui.end_row();
         ui.label("a demo is");
@@ -59,7 +78,7 @@ pub fn loading_ui(ui: &mut egui::Ui, s: &mut Settings, view: &mut ViewState) {
             }
             if ui
                 .radio(load.demos == Grouping::PerFile, "a file")
-                .on_hover_text("each file's first stream")
+                .on_hover_text("each file's stream that moves most")
                 .clicked()
             {
                 load.demos = Grouping::PerFile;
@@ -104,4 +123,36 @@ pub fn loading_ui(ui: &mut egui::Ui, s: &mut Settings, view: &mut ViewState) {
             view.segment = *seg;
         }
     });
+}
+
+/// A comma-separated list typed into one field, applied on Enter or when
+/// the field loses focus (one row of the Loading grid).
+fn list_field(
+    ui: &mut egui::Ui,
+    name: &str,
+    text: &mut String,
+    list: &mut Vec<String>,
+    hint: &str,
+    hover: &str,
+) {
+    let l = ui.label(name);
+    let typed = ui
+        .add(
+            egui::TextEdit::singleline(text)
+                .hint_text(hint)
+                .desired_width(160.0),
+        )
+        .labelled_by(l.id)
+        .on_hover_text(hover);
+    if typed.lost_focus() {
+        *list = text
+            .split(',')
+            .map(str::trim)
+            .filter(|f| !f.is_empty())
+            .map(str::to_owned)
+            .collect();
+    } else if !typed.has_focus() {
+        *text = list.join(", ");
+    }
+    ui.end_row();
 }

@@ -10,6 +10,7 @@ mod diagnostics;
 mod gains;
 mod loading;
 mod plots_panel;
+mod recording;
 mod rl;
 mod settings;
 mod side;

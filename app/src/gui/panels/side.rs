@@ -5,7 +5,7 @@ use eframe::egui;
 
 use super::super::commands::Command;
 use super::super::view_state::ViewState;
-use super::{demos, diagnostics, gains, loading, rl, settings};
+use super::{demos, diagnostics, gains, loading, recording, rl, settings};
 use crate::session::{Session, Settings};
 
 /// The side panel.
@@ -17,6 +17,10 @@ pub fn side_ui(
 ) -> Vec<Command> {
     let mut out = Vec::new();
     demos::demos_ui(ui, session, view, &mut out);
+    ui.separator();
+    ui.collapsing("Recording", |ui| {
+        recording::recording_ui(ui, session, s, &mut out)
+    });
     ui.separator();
     gains::gains_ui(ui, session, s);
     ui.separator();

@@ -1,0 +1,109 @@
+//! The Recording section: every stream each opened recording holds, kept or
+//! skipped and why (method.md section 11), with a tick to include a stream
+//! the filter skipped or leave out one it kept; the topics that hold no pose
+//! and a source's load error. A tick regroups what was read (nothing is read
+//! again); the demos, the model and the landscape follow.
+
+use dmpscope_core::Level;
+use dmpscope_core::arrange::StreamStatus;
+use eframe::egui;
+
+use super::super::commands::Command;
+use super::demos::level_colour;
+use crate::session::{self, Session, Settings};
+
+/// The Recording section.
+pub fn recording_ui(ui: &mut egui::Ui, session: &Session, s: &Settings, out: &mut Vec<Command>) {
+    let min = s.load.streams.min_extent_m;
+    if session.recordings().is_empty() {
+        ui.label("No recording is open.");
+        return;
+    }
+    for (source, slot) in session.recordings().iter().enumerate() {
+        let name = slot.source.name();
+        let kept = slot.streams().iter().filter(|s| s.status.kept()).count();
+        let title = if slot.loading() {
+            format!("{name} (reading...)")
+        } else {
+            format!("{name}: {kept} of {} streams kept", slot.streams().len())
+        };
+        egui::CollapsingHeader::new(title)
+            .id_salt(("recording", source))
+            .default_open(true)
+            .show(ui, |ui| {
+                if let Some(e) = slot.error() {
+                    ui.colored_label(level_colour(Level::Error), e);
+                }
+                egui::Grid::new(("streams", source))
+                    .striped(true)
+                    .show(ui, |ui| {
+                        for stream in slot.streams() {
+                            let mut on = stream.status.kept();
+                            let forced = slot.overrides.get(&stream.topic).copied();
+                            let tick = ui.checkbox(&mut on, &stream.topic).on_hover_text(
+                                "tick to use this stream, untick to leave it out, over the \
+                                 Loading filter",
+                            );
+                            if tick.changed() {
+                                out.push(
+                                    session::Command::SetStreamIncluded {
+                                        source,
+                                        topic: stream.topic.clone(),
+                                        included: Some(on),
+                                    }
+                                    .into(),
+                                );
+                            }
+                            ui.label(format!(
+                                "{} samples, {:.2} s, {:.0} mm",
+                                stream.samples,
+                                stream.duration_s,
+                                stream.extent_m * 1e3
+                            ));
+                            match &stream.status {
+                                StreamStatus::Kept => {
+                                    let demos = match stream.demos {
+                                        1 => "1 demo".to_owned(),
+                                        n => format!("{n} demos"),
+                                    };
+                                    ui.label(demos);
+                                }
+                                other => {
+                                    ui.colored_label(
+                                        level_colour(Level::Warning),
+                                        format!("skipped: {}", other.reason(min)),
+                                    );
+                                }
+                            }
+                            if forced.is_some() {
+                                if ui
+                                    .small_button("as filtered")
+                                    .on_hover_text("forget the tick: the Loading filter decides")
+                                    .clicked()
+                                {
+                                    out.push(
+                                        session::Command::SetStreamIncluded {
+                                            source,
+                                            topic: stream.topic.clone(),
+                                            included: None,
+                                        }
+                                        .into(),
+                                    );
+                                }
+                            } else {
+                                ui.label("");
+                            }
+                            ui.end_row();
+                        }
+                    });
+                let skipped = slot.skipped_topics();
+                if !skipped.is_empty() {
+                    ui.collapsing(format!("{} topics hold no pose", skipped.len()), |ui| {
+                        for t in skipped {
+                            ui.label(t);
+                        }
+                    });
+                }
+            });
+    }
+}
