@@ -1,7 +1,7 @@
 //! End-to-end tests of the recording paths at the process boundary:
 //! export (MCAP that loads back, DMP JSON), segmentation of one take, the
-//! axis convention, CSV input, and streams split at clock jumps and
-//! dropouts.
+//! axis convention, CSV input, streams split at clock jumps and
+//! dropouts, and a TF bag's unusable streams skipped with their reasons.
 
 mod support;
 
@@ -39,21 +39,24 @@ fn regen_exports_an_mcap_that_loads_back_as_demos_and_paths() {
         "--out",
         &out,
     ]);
-    let info: Value = serde_json::from_str(&ok(&["info", "--json", &out])).expect("json");
-    let names: Vec<&str> = info
-        .as_array()
-        .expect("list")
-        .iter()
-        .map(|d| d["name"].as_str().expect("name"))
-        .collect();
-    assert_eq!(names.len(), 20, "{names:?}");
+    let names_of = |args: &[&str]| -> Vec<String> {
+        let info: Value = serde_json::from_str(&ok(args)).expect("json");
+        info.as_array()
+            .expect("list")
+            .iter()
+            .map(|d| d["name"].as_str().expect("name").to_owned())
+            .collect()
+    };
+    // The demos come back under their own names; the regenerated paths are
+    // not demonstrations unless asked for.
+    let names = names_of(&["info", "--json", &out]);
+    let original = names_of(&["info", "--json", &sample()]);
+    assert_eq!(names, original);
+    let regen = names_of(&["info", "--json", &out, "--topic", "/regen/*"]);
+    assert_eq!(regen.len(), 10, "{regen:?}");
     assert!(
-        names.contains(&"export.mcap:/demo/reach10_demo_01"),
-        "{names:?}"
-    );
-    assert!(
-        names.contains(&"export.mcap:/regen/reach10_demo_10"),
-        "{names:?}"
+        regen.contains(&"reach10.mcap:/demo_10 (regenerated)".to_owned()),
+        "{regen:?}"
     );
     let bytes = std::fs::read(&out).expect("export");
     let text = String::from_utf8_lossy(&bytes);
@@ -240,4 +243,59 @@ fn a_clock_jump_or_a_dropout_splits_the_stream_and_says_where() {
     // Each part is judged as a demo of its own: the landscape runs.
     let extracted = dmpscope(&["extract", &jump, "--grid", "8", "--no-diagnostics"]);
     assert!(extracted.status.success(), "{}", text(&extracted.stderr));
+}
+
+#[test]
+fn a_tf_bag_recorded_with_everything_gives_its_moving_streams_and_says_why_not_the_rest() {
+    let bag = tmp("tfbag.mcap");
+    std::fs::write(&bag, support::tf_bag_bytes()).expect("write");
+    let out = dmpscope(&["extract", &bag, "--grid", "8", "--no-diagnostics"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    for why in [
+        "/tf_static:base_link: skipped: its stamp never advances",
+        "/tf:shoulder_link: skipped: it does not move (its positions span 0.0 mm",
+    ] {
+        assert!(err.contains(why), "stderr names {why}: {err}");
+    }
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("/tf:tracker") && stdout.contains("/hand"),
+        "{stdout}"
+    );
+    // --topic and --exclude choose.
+    let info: Value = serde_json::from_str(&ok(&[
+        "info",
+        "--json",
+        &bag,
+        "--topic",
+        "/tf",
+        "--exclude",
+        "*shoulder*",
+    ]))
+    .expect("json");
+    let names: Vec<&str> = info
+        .as_array()
+        .expect("list")
+        .iter()
+        .map(|d| d["name"].as_str().expect("name"))
+        .collect();
+    assert_eq!(names, ["tfbag.mcap:/tf:tracker"]);
+    // Nothing usable left: the command fails and says what was skipped.
+    let out = dmpscope(&["extract", &bag, "--exclude", "/tf", "--exclude", "/hand"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("no demonstration found: every stream was skipped"),
+        "{err}"
+    );
+    // --frame matching nothing names the frames there are.
+    let out = dmpscope(&["info", &bag, "--frame", "elbow"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains(
+            "--frame elbow matches no frame here; the frames are: base_link, shoulder_link, tracker"
+        ),
+        "{err}"
+    );
 }

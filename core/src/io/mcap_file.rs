@@ -234,12 +234,20 @@ impl Collector<'_> {
             schema_encoding: encoding,
             schema_data: data,
         };
-        if ch.metadata.get(super::export::ROLE_KEY).map(String::as_str)
-            == Some(super::export::ROLE_REGENERATED)
-        {
+        let regenerated = ch.metadata.get(super::export::ROLE_KEY).map(String::as_str)
+            == Some(super::export::ROLE_REGENERATED);
+        let asked = |t: &str| {
+            self.options
+                .streams
+                .topics
+                .iter()
+                .any(|p| crate::arrange::matches_stream(p, t))
+        };
+        if regenerated && !asked(&ch.topic) {
             self.skipped.push((
                 ch.topic.clone(),
-                "a path dmpscope regenerated, not a demonstration".to_owned(),
+                "a path dmpscope regenerated, not a demonstration; --topic '/regen/*' loads it"
+                    .to_owned(),
             ));
             self.channels.insert(ch.id, None);
             return Ok(());
@@ -270,7 +278,13 @@ impl Collector<'_> {
         let entry = decoder.map(|decoder| {
             self.streams.push(Channel {
                 topic: ch.topic.clone(),
-                name: ch.metadata.get(super::export::NAME_KEY).cloned(),
+                name: ch.metadata.get(super::export::NAME_KEY).map(|n| {
+                    if regenerated {
+                        format!("{n} (regenerated)")
+                    } else {
+                        n.clone()
+                    }
+                }),
                 decoder,
                 cdr: ch.message_encoding == "cdr",
                 compressed: 0,
