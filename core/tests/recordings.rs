@@ -204,12 +204,14 @@ fn tf_bag() -> Vec<u8> {
                         frame_id: "world",
                         child_frame_id: "tracker",
                         translation: p,
+                        rotation: [0.0, 0.0, 0.0, 1.0],
                     },
                     StampedTransform {
                         stamp_ns: t,
                         frame_id: "base_link",
                         child_frame_id: "shoulder_link",
                         translation: [0.0, 0.0, 0.3 + 1e-5 * (t % 3) as f64],
+                        rotation: [0.0, 0.0, 0.0, 1.0],
                     },
                 ];
                 (t, ros2::encode_tf_message(&ts))
@@ -226,6 +228,7 @@ fn tf_bag() -> Vec<u8> {
                 frame_id: "world",
                 child_frame_id: "base_link",
                 translation: [0.1, 0.0, 0.0],
+                rotation: [0.0, 0.0, 0.0, 1.0],
             }]),
         )],
     };
@@ -459,4 +462,116 @@ fn an_export_loads_back_as_the_same_demos_names_included() {
             assert!((p[a] - (q[a] + model_demo.p0[a])).abs() < 1e-9);
         }
     }
+}
+
+#[test]
+fn a_fixed_frame_composes_tf_and_tf_static_into_one_frame() {
+    // world -> base (static: 1 m along x, turned 90 degrees about z),
+    // base -> tracker (dynamic, at 90 Hz), and a camera frame under world.
+    let q = [
+        0.0,
+        0.0,
+        (std::f64::consts::FRAC_PI_4).sin(),
+        (std::f64::consts::FRAC_PI_4).cos(),
+    ];
+    let statics = Chan {
+        topic: "/tf_static".to_owned(),
+        schema: TF,
+        messages: vec![(
+            EPOCH,
+            ros2::encode_tf_message(&[StampedTransform {
+                stamp_ns: EPOCH,
+                frame_id: "world",
+                child_frame_id: "base",
+                translation: [1.0, 0.0, 0.0],
+                rotation: q,
+            }]),
+        )],
+    };
+    let hand = reach(EPOCH, 150);
+    let tf = Chan {
+        topic: "/tf".to_owned(),
+        schema: TF,
+        messages: hand
+            .iter()
+            .map(|&(t, p)| {
+                (
+                    t,
+                    ros2::encode_tf_message(&[StampedTransform {
+                        stamp_ns: t,
+                        frame_id: "base",
+                        child_frame_id: "tracker",
+                        translation: p,
+                        rotation: [0.0, 0.0, 0.0, 1.0],
+                    }]),
+                )
+            })
+            .collect(),
+    };
+    let bytes = write(&[statics, tf]);
+    let tracker = |fixed: Option<&str>| {
+        let options = LoadOptions {
+            fixed_frame: fixed.map(str::to_owned),
+            ..LoadOptions::default()
+        };
+        let loaded = load_source("chain.mcap", SourceData::Bytes(&bytes), &options).expect("loads");
+        loaded
+            .demos
+            .into_iter()
+            .find(|d| d.topic == "/tf:tracker")
+            .expect("the tracker")
+    };
+    // By default the tracker is relative to its parent, base.
+    let own = tracker(None);
+    for (p, (_, q)) in own.positions.iter().zip(&hand) {
+        assert_eq!(p, q);
+    }
+    // In world: turned 90 degrees and shifted, (x, y, z) -> (1 - y, x, z).
+    let world = tracker(Some("world"));
+    for (p, (_, q)) in world.positions.iter().zip(&hand) {
+        let expect = [1.0 - q[1], q[0], q[2]];
+        assert!(
+            (0..3).all(|a| (p[a] - expect[a]).abs() < 1e-12),
+            "{p:?} vs {expect:?}"
+        );
+    }
+    // A fixed frame the tree does not hold skips the stream and says why.
+    let options = LoadOptions {
+        fixed_frame: Some("map".into()),
+        ..LoadOptions::default()
+    };
+    let err = load_source("chain.mcap", SourceData::Bytes(&bytes), &options)
+        .expect_err("nothing is expressible in map");
+    assert!(
+        err.to_string()
+            .starts_with("chain.mcap: /tf:tracker: not expressed in map: no transform chain joins"),
+        "{err}"
+    );
+    let mut channels = vec![pose_chan("/hand", &hand)];
+    channels.push(Chan {
+        topic: "/tf".to_owned(),
+        schema: TF,
+        messages: hand
+            .iter()
+            .map(|&(t, p)| {
+                let tr = StampedTransform {
+                    stamp_ns: t,
+                    frame_id: "base",
+                    child_frame_id: "tracker",
+                    translation: p,
+                    rotation: [0.0, 0.0, 0.0, 1.0],
+                };
+                (t, ros2::encode_tf_message(&[tr]))
+            })
+            .collect(),
+    });
+    let loaded = load_source("mixed.mcap", SourceData::Bytes(&write(&channels)), &options)
+        .expect("the PoseStamped stream stays");
+    assert!(
+        loaded.notices.iter().any(|n| n
+            .text
+            .contains("/tf:tracker: not expressed in map: no transform chain joins tracker (under base) and map (under map): skipped")),
+        "{:?}",
+        loaded.notices
+    );
 }

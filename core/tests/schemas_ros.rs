@@ -139,6 +139,7 @@ fn tr<'a>(stamp_ns: i64, frame: &'a str, child: &'a str, p: [f64; 3]) -> Stamped
         frame_id: frame,
         child_frame_id: child,
         translation: p,
+        rotation: [0.0, 0.0, 0.0, 1.0],
     }
 }
 

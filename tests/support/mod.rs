@@ -157,6 +157,7 @@ pub fn tf_bag_bytes() -> Vec<u8> {
         frame_id: "world",
         child_frame_id: "base_link",
         translation: [0.1, 0.0, 0.0],
+        rotation: [0.0, 0.0, 0.0, 1.0],
     }];
     put(static_id, 0, epoch, &ros2::encode_tf_message(&statics));
     for (k, (t, p)) in reach(epoch, 1.0).into_iter().enumerate() {
@@ -166,12 +167,14 @@ pub fn tf_bag_bytes() -> Vec<u8> {
                 frame_id: "world",
                 child_frame_id: "tracker",
                 translation: p,
+                rotation: [0.0, 0.0, 0.0, 1.0],
             },
             StampedTransform {
                 stamp_ns: t,
                 frame_id: "base_link",
                 child_frame_id: "shoulder_link",
                 translation: [0.0, 0.0, 0.3],
+                rotation: [0.0, 0.0, 0.0, 1.0],
             },
         ];
         put(tf_id, k, t, &ros2::encode_tf_message(&ts));

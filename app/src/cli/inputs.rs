@@ -67,6 +67,11 @@ pub struct LoadArgs {
     /// Keep only these TF child frames / pose indices (repeatable).
     #[arg(long = "frame", value_name = "NAME")]
     pub frames: Vec<String>,
+    /// Express every TF frame in this frame: `/tf` and `/tf_static` are
+    /// composed as a TF buffer does (dynamic transforms interpolated at each
+    /// stamp); without it each transform stays relative to its own parent.
+    #[arg(long, value_name = "FRAME")]
+    pub fixed_frame: Option<String>,
     /// Use only streams matching this glob (`*`, `?`; repeatable): a
     /// topic (`/vive/*`), a topic and key (`/tf:hand`) or a key (`hand`).
     #[arg(long = "topic", value_name = "PATTERN")]
@@ -125,6 +130,7 @@ impl LoadArgs {
                 GapsArg::Split => GapPolicy::Split,
                 GapsArg::Keep => GapPolicy::Keep,
             },
+            fixed_frame: self.fixed_frame.clone(),
             streams: StreamFilter {
                 topics: self.topics.clone(),
                 exclude: self.exclude.clone(),

@@ -68,6 +68,8 @@ pub struct ViewState {
     pub rl: RlChoices,
     /// The frame filter as typed (applied on Enter or leaving the field).
     pub frames_text: String,
+    /// The fixed frame as typed.
+    pub fixed_frame_text: String,
     /// The topic patterns as typed.
     pub topics_text: String,
     /// The exclude patterns as typed.
@@ -94,6 +96,7 @@ impl ViewState {
             rl: RlChoices::default(),
             frames_text: String::new(),
             topics_text: String::new(),
+            fixed_frame_text: String::new(),
             exclude_text: String::new(),
             segment: SegmentSettings::default(),
             model_seen: None,

@@ -101,6 +101,8 @@ pub struct StreamKey {
     pub frames: Vec<String>,
     /// The up axis.
     pub up: UpAxis,
+    /// The frame TF transforms are expressed in.
+    pub fixed_frame: Option<String>,
 }
 
 impl StreamKey {
@@ -109,6 +111,7 @@ impl StreamKey {
         Self {
             frames: options.frames.clone(),
             up: options.up,
+            fixed_frame: options.fixed_frame.clone(),
         }
     }
 
@@ -116,6 +119,7 @@ impl StreamKey {
         LoadOptions {
             frames: self.frames.clone(),
             up: self.up,
+            fixed_frame: self.fixed_frame.clone(),
             ..LoadOptions::default()
         }
     }

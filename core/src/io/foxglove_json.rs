@@ -48,6 +48,7 @@ impl MessageDecoder for JsonDecoder {
                     key: None,
                     stamp_ns,
                     position: vector(pose, "position", "pose.")?,
+                    ..PoseSample::default()
                 });
             }
             FoxgloveSchema::PosesInFrame => {
@@ -64,6 +65,7 @@ impl MessageDecoder for JsonDecoder {
                         key: Some(Cow::Borrowed(key)),
                         stamp_ns,
                         position,
+                        ..PoseSample::default()
                     });
                 }
             }
@@ -92,6 +94,7 @@ fn transform<'v>(t: &'v Object, path: &str) -> Result<PoseSample<'v>, String> {
         key: Some(Cow::Borrowed(child)),
         stamp_ns: stamp(t, path)?,
         position: vector(Some(t), "translation", path)?,
+        ..PoseSample::default()
     })
 }
 

@@ -129,6 +129,7 @@ impl MessageDecoder for ProtoDecoder {
                 key: None,
                 stamp_ns: stamp.read(&msg)?,
                 position: position.read(&msg)?,
+                ..PoseSample::default()
             }),
             Shape::Indexed {
                 stamp,
@@ -148,6 +149,7 @@ impl MessageDecoder for ProtoDecoder {
                         key: Some(Cow::Borrowed(key)),
                         stamp_ns,
                         position,
+                        ..PoseSample::default()
                     });
                 }
             }
@@ -259,6 +261,7 @@ impl Transform {
             key: Some(key),
             stamp_ns: self.stamp.read(msg)?,
             position: self.translation.read(msg)?,
+            ..PoseSample::default()
         })
     }
 }

@@ -69,6 +69,10 @@ pub struct LoadOptions {
     /// Which streams are demonstrations: topic patterns and the least
     /// movement (applied by [`super::load_source`]).
     pub streams: crate::arrange::StreamFilter,
+    /// Express every TF frame in this frame, composing `/tf` and
+    /// `/tf_static` as a TF buffer does; `None` keeps each transform
+    /// relative to its own parent.
+    pub fixed_frame: Option<String>,
 }
 
 /// What one file gave.
@@ -117,6 +121,8 @@ pub fn load_bytes_with(label: &str, bytes: &[u8], options: &LoadOptions) -> Resu
 /// One demo being collected: a topic, or one key of a multi-pose topic.
 #[derive(Default)]
 struct Stream {
+    /// Its samples are TF transforms (they have a parent frame).
+    tf: bool,
     stamps: Vec<Option<i64>>,
     log_times: Vec<i64>,
     positions: Vec<[f64; 3]>,
@@ -166,6 +172,8 @@ struct Collector<'o> {
     /// Every key seen in multi-pose messages, filtered or not (to name them
     /// when `--frame` matches none).
     keys_seen: std::collections::BTreeSet<String>,
+    /// The transforms, when a fixed frame was asked for.
+    tf: Option<crate::tf::TfBuffer>,
     skipped: Vec<(String, String)>,
     /// The first message that failed to decode. It is reported once the file
     /// is read, unless its chunk fails its CRC first (then the file is
@@ -343,6 +351,7 @@ impl Collector<'_> {
             data
         };
         let keys_seen = &mut self.keys_seen;
+        let tf = &mut self.tf;
         let log_time = i64::try_from(header.log_time).unwrap_or(i64::MAX);
         let mut bad: Option<(Option<String>, usize)> = None;
         let Channel {
@@ -352,7 +361,25 @@ impl Collector<'_> {
             keyed,
             ..
         } = channel;
+        let is_static = topic.ends_with("tf_static");
         let decoded = decoder.decode(data, &mut |sample| {
+            if let (Some(buffer), Some(parent), Some(child)) =
+                (tf.as_mut(), &sample.parent, &sample.key)
+                && sample
+                    .position
+                    .iter()
+                    .chain(&sample.rotation)
+                    .all(|v| v.is_finite())
+            {
+                buffer.add(
+                    parent,
+                    child,
+                    sample.stamp_ns.unwrap_or(log_time),
+                    sample.position,
+                    sample.rotation,
+                    is_static,
+                );
+            }
             if let Some(k) = &sample.key
                 && !options.frames.is_empty()
             {
@@ -379,6 +406,7 @@ impl Collector<'_> {
                     }
                 }
             };
+            stream.tf |= sample.parent.is_some();
             stream.stamps.push(sample.stamp_ns);
             stream.log_times.push(log_time);
             stream.positions.push(options.up.to_z_up(sample.position));
@@ -450,6 +478,10 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
         streams: Vec::new(),
         by_topic: BTreeMap::new(),
         keys_seen: std::collections::BTreeSet::new(),
+        tf: options
+            .fixed_frame
+            .as_ref()
+            .map(|_| crate::tf::TfBuffer::default()),
         skipped: Vec::new(),
         pending: None,
     };
@@ -513,6 +545,23 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
         }
     }
     streams.sort_by(|a, b| (&a.0, &a.1).cmp(&(&b.0, &b.1)));
+    let mut lost = Vec::new();
+    if let (Some(fixed), Some(buffer)) = (&options.fixed_frame, c.tf.as_mut()) {
+        streams.retain_mut(|(topic, key, s)| match key {
+            Some(k) if s.tf => match in_fixed_frame(buffer, fixed, k, s, options.up) {
+                Ok(None) => true,
+                Ok(Some(note)) => {
+                    warnings.push(format!("{label}: {topic}:{k}: {note}"));
+                    true
+                }
+                Err(why) => {
+                    lost.push(format!("{topic}:{k}: not expressed in {fixed}: {why}"));
+                    false
+                }
+            },
+            _ => true,
+        });
+    }
     let demos: Vec<RawDemo> = streams
         .into_iter()
         .filter(|(_, _, s)| !s.positions.is_empty())
@@ -555,6 +604,13 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
         }
         warnings.push(format!("{label}: {what}"));
     }
+    if demos.is_empty() && !lost.is_empty() {
+        return Err(Error::Source {
+            path: label.to_owned(),
+            reason: lost.join("; "),
+        });
+    }
+    warnings.extend(lost.iter().map(|l| format!("{label}: {l}: skipped")));
     if demos.is_empty() {
         return Err(Error::NoDemos {
             file: label.to_owned(),
@@ -571,6 +627,31 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
         warnings,
         notes,
     })
+}
+
+/// Re-expresses a TF stream in `fixed` (method.md section 11): each sample
+/// becomes the frame's origin in `fixed` at its stamp. Gives a note when
+/// transforms were held past their recorded span.
+fn in_fixed_frame(
+    buffer: &mut crate::tf::TfBuffer,
+    fixed: &str,
+    frame: &str,
+    s: &mut Stream,
+    up: UpAxis,
+) -> std::result::Result<Option<String>, String> {
+    let mut held = 0;
+    for i in 0..s.positions.len() {
+        let stamp = s.stamps[i].unwrap_or(s.log_times[i]);
+        let (p, h) = buffer.origin_in(fixed, frame, stamp)?;
+        held += usize::from(h);
+        s.positions[i] = up.to_z_up(p);
+    }
+    Ok((held > 0).then(|| {
+        format!(
+            "{held} samples lie outside the recorded span of a transform to {fixed}: the \
+             nearest transform was held there (tf2 would refuse them)"
+        )
+    }))
 }
 
 /// The streams a truncated file cut short: those still sending when it

@@ -30,7 +30,7 @@ pub use mcap_file::{
 pub use source::{SourceData, SourceDemos, load_source, load_streams};
 
 /// One pose a decoder found in a message.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct PoseSample<'a> {
     /// Which of several poses in one message this is (a TF child frame, an
     /// index into a pose array); `None` for single-pose messages. Each key of
@@ -41,6 +41,11 @@ pub struct PoseSample<'a> {
     pub stamp_ns: Option<i64>,
     /// The position in metres, in the recording's own axes.
     pub position: [f64; 3],
+    /// For a TF transform, its parent frame (`header.frame_id`), which the
+    /// TF buffer of `--fixed-frame` needs; `None` otherwise.
+    pub parent: Option<Cow<'a, str>>,
+    /// For a TF transform, its rotation `[x, y, z, w]` (unused otherwise).
+    pub rotation: [f64; 4],
 }
 
 /// Decodes the messages of one channel.

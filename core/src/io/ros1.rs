@@ -157,23 +157,33 @@ impl<'a> Reader<'a> {
 
     /// One `geometry_msgs/TransformStamped`, keyed by its child frame.
     fn transform_stamped(&mut self) -> Result<PoseSample<'a>, String> {
-        let stamp_ns = self.header()?;
+        self.u32("header.seq")?;
+        let secs = self.u32("header.stamp.secs")?;
+        let nsecs = self.u32("header.stamp.nsecs")?;
+        let parent = self.string("header.frame_id")?;
+        let stamp_ns =
+            (secs != 0 || nsecs != 0).then(|| i64::from(secs) * 1_000_000_000 + i64::from(nsecs));
         let child = self.string("child_frame_id")?;
         let position = self.vec3([
             "transform.translation.x",
             "transform.translation.y",
             "transform.translation.z",
         ])?;
-        self.skip4([
+        let mut rotation = [0.0; 4];
+        for (v, name) in rotation.iter_mut().zip([
             "transform.rotation.x",
             "transform.rotation.y",
             "transform.rotation.z",
             "transform.rotation.w",
-        ])?;
+        ]) {
+            *v = self.f64(name)?;
+        }
         Ok(PoseSample {
             key: Some(Cow::Borrowed(child)),
             stamp_ns,
             position,
+            parent: Some(Cow::Borrowed(parent)),
+            rotation,
         })
     }
 }
@@ -194,6 +204,7 @@ pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String
         key: None,
         stamp_ns,
         position,
+        ..PoseSample::default()
     })
 }
 
@@ -274,7 +285,9 @@ pub fn encode_tf_message(transforms: &[StampedTransform<'_>]) -> Vec<u8> {
     for t in transforms {
         write_header(&mut buf, t.stamp_ns, t.frame_id);
         write_string(&mut buf, t.child_frame_id);
-        write_pose(&mut buf, t.translation);
+        for v in t.translation.into_iter().chain(t.rotation) {
+            buf.extend_from_slice(&v.to_le_bytes());
+        }
     }
     buf
 }

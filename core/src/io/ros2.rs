@@ -200,7 +200,9 @@ fn pose(r: &mut CdrReader<'_>) -> Result<[f64; 3], String> {
 /// One `geometry_msgs/TransformStamped`, keyed by its child frame (borrowed
 /// from the message).
 fn transform_stamped<'a>(r: &mut CdrReader<'a>) -> Result<PoseSample<'a>, String> {
-    let stamp_ns = header(r)?;
+    let sec = r.i32("header.stamp.sec")?;
+    let nanosec = r.u32("header.stamp.nanosec")?;
+    let parent = r.string("header.frame_id")?;
     let child = r.string("child_frame_id")?;
     let position = vec3(
         r,
@@ -210,19 +212,21 @@ fn transform_stamped<'a>(r: &mut CdrReader<'a>) -> Result<PoseSample<'a>, String
             "transform.translation.z",
         ],
     )?;
-    skip4(
-        r,
-        [
-            "transform.rotation.x",
-            "transform.rotation.y",
-            "transform.rotation.z",
-            "transform.rotation.w",
-        ],
-    )?;
+    let mut rotation = [0.0; 4];
+    for (v, name) in rotation.iter_mut().zip([
+        "transform.rotation.x",
+        "transform.rotation.y",
+        "transform.rotation.z",
+        "transform.rotation.w",
+    ]) {
+        *v = r.f64(name)?;
+    }
     Ok(PoseSample {
         key: Some(Cow::Borrowed(child)),
-        stamp_ns,
+        stamp_ns: stamp_ns(sec, nanosec),
         position,
+        parent: Some(Cow::Borrowed(parent)),
+        rotation,
     })
 }
 
@@ -238,6 +242,7 @@ pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String
         key: None,
         stamp_ns,
         position,
+        ..PoseSample::default()
     })
 }
 
@@ -254,6 +259,7 @@ pub fn decode_pose_with_covariance_stamped(message: &[u8]) -> Result<PoseSample<
         key: None,
         stamp_ns,
         position,
+        ..PoseSample::default()
     })
 }
 
@@ -266,6 +272,7 @@ pub fn decode_point_stamped(message: &[u8]) -> Result<PoseSample<'static>, Strin
         key: None,
         stamp_ns,
         position,
+        ..PoseSample::default()
     })
 }
 
@@ -331,8 +338,10 @@ pub struct StampedTransform<'a> {
     pub frame_id: &'a str,
     /// The child frame, the key the decoders give.
     pub child_frame_id: &'a str,
-    /// The translation in metres (the rotation is written as identity).
+    /// The translation in metres.
     pub translation: [f64; 3],
+    /// The rotation `[x, y, z, w]`.
+    pub rotation: [f64; 4],
 }
 
 /// Writes `std_msgs/Header`.
@@ -352,11 +361,13 @@ fn write_pose(w: &mut CdrWriter, position: [f64; 3]) {
     }
 }
 
-/// Writes one `TransformStamped` with an identity rotation.
+/// Writes one `TransformStamped`.
 fn write_transform(w: &mut CdrWriter, t: &StampedTransform<'_>) {
     write_header(w, t.stamp_ns, t.frame_id);
     w.string(t.child_frame_id);
-    write_pose(w, t.translation);
+    for v in t.translation.into_iter().chain(t.rotation) {
+        w.f64(v);
+    }
 }
 
 /// Encodes `geometry_msgs/msg/PoseStamped` with an identity orientation.

@@ -1,9 +1,8 @@
 //! How recordings are read, as on the command line (`--y-up`, `--frame`,
-//! `--topic`, `--exclude`, `--min-extent`, `--demos`, `--rest-speed`,
-//! `--min-rest`, `--min-demo`, `--gaps`):
-//! changing the up axis or the frame filter reads the recordings again,
-//! changing what a demo is or what a break in time does only regroups what
-//! was read.
+//! `--fixed-frame`, `--topic`, `--exclude`, `--min-extent`, `--demos`,
+//! `--rest-speed`, `--min-rest`, `--min-demo`, `--gaps`): changing the up
+//! axis, the frame filter or the fixed frame reads the recordings again;
+//! the rest only rearranges what was read.
 
 use dmpscope_core::gaps::GapPolicy;
 use dmpscope_core::group::Grouping;
@@ -33,6 +32,25 @@ pub fn loading_ui(ui: &mut egui::Ui, s: &mut Settings, view: &mut ViewState) {
             "all (or: hand_left, 1, ...)",
             "TF child frames or pose indices to keep, comma separated; Enter applies",
         );
+        let l = ui.label("fixed frame");
+        let typed = ui
+            .add(
+                egui::TextEdit::singleline(&mut view.fixed_frame_text)
+                    .hint_text("each transform's parent (or: world)")
+                    .desired_width(160.0),
+            )
+            .labelled_by(l.id)
+            .on_hover_text(
+                "express every TF frame in this frame, composing /tf and /tf_static; Enter \
+                 applies",
+            );
+        if typed.lost_focus() {
+            let f = view.fixed_frame_text.trim();
+            load.fixed_frame = (!f.is_empty()).then(|| f.to_owned());
+        } else if !typed.has_focus() {
+            view.fixed_frame_text = load.fixed_frame.clone().unwrap_or_default();
+        }
+        ui.end_row();
         list_field(
             ui,
             "topics",
