@@ -159,17 +159,18 @@ fn a_rosbag2_folder_opens_as_in_the_cli() {
         .iter()
         .map(|d| d.name.as_str())
         .collect();
+    // A split bag is one recording, named by its folder.
     assert_eq!(
         names,
         [
-            "gui-bag_0.mcap:/hand_01",
-            "gui-bag_0.mcap:/hand_02",
-            "gui-bag_1.mcap:/hand_03",
-            "gui-bag_1.mcap:/hand_04"
+            "gui-bag:/hand_01",
+            "gui-bag:/hand_02",
+            "gui-bag:/hand_03",
+            "gui-bag:/hand_04"
         ]
     );
     assert_eq!(session.status(), Status::Ready);
-    let _listed = h.get_by_label_contains("gui-bag_1.mcap:/hand_04");
+    let _listed = h.get_by_label_contains("gui-bag:/hand_04");
     // Its metadata.yaml opens the same folder (what a file dialog picks).
     add(&mut h, vec![Source::Path(bag.join("metadata.yaml"))]);
     assert_eq!(h.state().session().demos().len(), 8);

@@ -134,6 +134,10 @@ fn a_click_on_the_pareto_front_moves_the_operating_point_onto_it() {
 #[test]
 fn an_a_peak_limit_gives_the_constrained_optimum() {
     let mut h = harness_on(Source::planted_sample());
+    // The limit's rows are near the side panel's foot at 800 px: a taller
+    // window keeps its Go there button on screen (a user scrolls to it).
+    h.set_size(egui::vec2(1280.0, 1000.0));
+    h.run_steps(2);
     h.get_by_label("Limit a_peak to").click();
     h.run_steps(3);
     let limit = h.state().settings.a_peak_limit.expect("a limit");

@@ -34,68 +34,74 @@ pub fn recording_ui(ui: &mut egui::Ui, session: &Session, s: &Settings, out: &mu
                 if let Some(e) = slot.error() {
                     ui.colored_label(level_colour(Level::Error), e);
                 }
-                egui::Grid::new(("streams", source))
-                    .striped(true)
-                    .show(ui, |ui| {
-                        for stream in slot.streams() {
-                            let mut on = stream.status.kept();
-                            let forced = slot.overrides.get(&stream.topic).copied();
-                            let tick = ui.checkbox(&mut on, &stream.topic).on_hover_text(
-                                "tick to use this stream, untick to leave it out, over the \
-                                 Loading filter",
+                // One stream a row and its account below, wrapped: the side
+                // panel keeps its width whatever the reasons say.
+                for stream in slot.streams() {
+                    let forced = slot.overrides.get(&stream.topic).copied();
+                    ui.horizontal(|ui| {
+                        let mut on = stream.status.kept();
+                        let tick = ui.checkbox(&mut on, &stream.topic).on_hover_text(
+                            "tick to use this stream, untick to leave it out, over the \
+                             Loading filter",
+                        );
+                        if tick.changed() {
+                            out.push(
+                                session::Command::SetStreamIncluded {
+                                    source,
+                                    topic: stream.topic.clone(),
+                                    included: Some(on),
+                                }
+                                .into(),
                             );
-                            if tick.changed() {
-                                out.push(
-                                    session::Command::SetStreamIncluded {
-                                        source,
-                                        topic: stream.topic.clone(),
-                                        included: Some(on),
-                                    }
-                                    .into(),
-                                );
-                            }
-                            ui.label(format!(
-                                "{} samples, {:.2} s, {:.0} mm",
-                                stream.samples,
-                                stream.duration_s,
-                                stream.extent_m * 1e3
-                            ));
-                            match &stream.status {
-                                StreamStatus::Kept => {
-                                    let demos = match stream.demos {
-                                        1 => "1 demo".to_owned(),
-                                        n => format!("{n} demos"),
-                                    };
-                                    ui.label(demos);
+                        }
+                        if forced.is_some()
+                            && ui
+                                .small_button("as filtered")
+                                .on_hover_text("forget the tick: the Loading filter decides")
+                                .clicked()
+                        {
+                            out.push(
+                                session::Command::SetStreamIncluded {
+                                    source,
+                                    topic: stream.topic.clone(),
+                                    included: None,
                                 }
-                                other => {
-                                    ui.colored_label(
-                                        level_colour(Level::Warning),
-                                        format!("skipped: {}", other.reason(min)),
-                                    );
-                                }
-                            }
-                            if forced.is_some() {
-                                if ui
-                                    .small_button("as filtered")
-                                    .on_hover_text("forget the tick: the Loading filter decides")
-                                    .clicked()
-                                {
-                                    out.push(
-                                        session::Command::SetStreamIncluded {
-                                            source,
-                                            topic: stream.topic.clone(),
-                                            included: None,
-                                        }
-                                        .into(),
-                                    );
-                                }
-                            } else {
-                                ui.label("");
-                            }
-                            ui.end_row();
+                                .into(),
+                            );
                         }
                     });
+                    ui.indent(("stream", source, &stream.topic), |ui| {
+                        let stats = format!(
+                            "{} sample{}, {:.2} s, spans {:.0} mm",
+                            stream.samples,
+                            if stream.samples == 1 { "" } else { "s" },
+                            stream.duration_s,
+                            stream.extent_m * 1e3
+                        );
+                        match &stream.status {
+                            StreamStatus::Kept => {
+                                let demos = match stream.demos {
+                                    1 => "1 demo".to_owned(),
+                                    n => format!("{n} demos"),
+                                };
+                                ui.add(egui::Label::new(format!("{stats}: {demos}")).wrap());
+                            }
+                            other => {
+                                ui.add(egui::Label::new(stats).wrap());
+                                ui.add(
+                                    egui::Label::new(
+                                        egui::RichText::new(format!(
+                                            "skipped: {}",
+                                            other.reason(min)
+                                        ))
+                                        .color(level_colour(Level::Warning)),
+                                    )
+                                    .wrap(),
+                                );
+                            }
+                        }
+                    });
+                }
                 let skipped = slot.skipped_topics();
                 if !skipped.is_empty() {
                     ui.collapsing(format!("{} topics hold no pose", skipped.len()), |ui| {
