@@ -222,6 +222,51 @@ fn the_recording_panel_shows_skipped_streams_and_a_tick_recomputes_the_landscape
 }
 
 #[test]
+fn a_continuous_take_shows_its_timeline_and_new_thresholds_recut_it() {
+    // Three reaches with 0.8 s rests between, as CSV.
+    let mut csv = String::from("t,x,y,z\n");
+    let (mut t, mut x) = (0.0_f64, 0.3_f64);
+    for r in 0..3 {
+        for _ in 0..72 {
+            csv.push_str(&format!("{t:.6},{x:.6},0,1\n"));
+            t += 1.0 / 90.0;
+        }
+        let (a, b) = if r % 2 == 0 { (0.3, 0.7) } else { (0.7, 0.3) };
+        for k in 0..108 {
+            let s = k as f64 / 107.0;
+            x = a + (b - a) * (10.0 * s.powi(3) - 15.0 * s.powi(4) + 6.0 * s.powi(5));
+            csv.push_str(&format!("{t:.6},{x:.6},0,1\n"));
+            t += 1.0 / 90.0;
+        }
+    }
+    let source = Source::Bytes {
+        name: "take.csv".into(),
+        bytes: csv.into_bytes().into(),
+    };
+    let mut settings = Settings::with_grid_points(16);
+    settings.load.demos = dmpscope_core::group::Grouping::Segmented(
+        dmpscope_core::segment::SegmentSettings::default(),
+    );
+    let mut h = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .build_eframe(move |_cc| DmpApp::with_runner(settings, vec![source], Runner::inline()));
+    h.run_steps(3);
+    assert_eq!(h.state().session().demos().len(), 3);
+    h.get_by_label("Recording").click();
+    h.run_steps(2);
+    let _timeline =
+        h.get_by_label("speed [m/s] over time [s]: 3 segments (shaded), rest below the line");
+    // A shortest demo longer than each reach leaves none.
+    if let dmpscope_core::group::Grouping::Segmented(seg) = &mut h.state_mut().settings.load.demos {
+        seg.min_segment_s = 2.0;
+    }
+    h.run_steps(3);
+    let _none =
+        h.get_by_label("speed [m/s] over time [s]: 0 segments (shaded), rest below the line");
+    assert!(h.state().session().demos().is_empty());
+}
+
+#[test]
 fn a_folder_with_no_usable_demo_says_so_instead_of_a_spinner() {
     let short = support::rosbag2_folder("gui-short", &[(0, 0)], true);
     let mut h = harness_on(vec![Source::Path(short)], Runner::inline());

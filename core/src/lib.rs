@@ -46,6 +46,7 @@ pub mod savgol;
 pub mod segment;
 pub mod similarity;
 pub mod synth;
+pub mod text;
 pub mod tf;
 
 pub use demo::{DemoInfo, RawDemo, TimeSource};

@@ -29,6 +29,7 @@
 //! `edge` names the box sides the optimum lies on ("" when interior);
 //! `d_mean` and `a_peak` follow `demos`' order.
 
+use crate::text::{pad_left, pad_right, widest};
 use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
@@ -423,13 +424,7 @@ impl Report {
             "\nper demo (leave-one-out and bootstrap on a {}x{} grid, same box):",
             g.dm.n, g.km.n
         );
-        let name_w = d
-            .demos
-            .iter()
-            .map(|x| x.name.len())
-            .max()
-            .unwrap_or(4)
-            .max(4);
+        let name_w = widest(d.demos.iter().map(|x| x.name.as_str()), 4);
         let _ = writeln!(
             s,
             "{:<name_w$}  {:>7}  {:>10}  {:>10}  {:>9}  {:>7}",
@@ -448,8 +443,8 @@ impl Report {
                 });
             let _ = writeln!(
                 s,
-                "{:<name_w$}  {:>7}  {dm:>10}  {km:>10}  {j:>9}  {edge:>7}",
-                dd.name,
+                "{}  {:>7}  {dm:>10}  {km:>10}  {j:>9}  {edge:>7}",
+                pad_right(&dd.name, name_w),
                 opt(dd.s_share, 3)
             );
         }
@@ -484,7 +479,7 @@ impl Report {
     pub fn table_text(&self) -> String {
         let rows = &self.table;
         let mut s = String::new();
-        let name_w = rows.iter().map(|r| r.name.len()).max().unwrap_or(4).max(9);
+        let name_w = widest(rows.iter().map(|r| r.name.as_str()), 9);
         let _ = writeln!(
             s,
             "{:<name_w$}  {:>9}  {:>9}  {:>7}  {:>9}  {:>9}  {:>9}",
@@ -493,12 +488,18 @@ impl Report {
         for r in rows {
             let _ = writeln!(
                 s,
-                "{:<name_w$}  {:>9.3}  {:>9.3}  {:>7.3}  {:>9.5}  {:>9.5}  {:>9.5}",
-                r.name, r.dm, r.km, r.zeta, r.s, r.d_sum, r.j
+                "{}  {:>9.3}  {:>9.3}  {:>7.3}  {:>9.5}  {:>9.5}  {:>9.5}",
+                pad_right(&r.name, name_w),
+                r.dm,
+                r.km,
+                r.zeta,
+                r.s,
+                r.d_sum,
+                r.j
             );
         }
         let names = self.demo_names();
-        let demo_w = names.iter().map(String::len).max().unwrap_or(4).max(8);
+        let demo_w = widest(names.iter().map(String::as_str), 8);
         let col_w = name_w.max(9);
         type Pick = fn(&TableRow) -> &[f64];
         let parts: [(&str, Pick, f64, usize); 2] = [
@@ -509,11 +510,11 @@ impl Report {
             let _ = writeln!(s, "\nTable I: {title}");
             let _ = write!(s, "{:<demo_w$}", "demo");
             for r in rows {
-                let _ = write!(s, "  {:>col_w$}", r.name);
+                let _ = write!(s, "  {}", pad_left(&r.name, col_w));
             }
             s.push('\n');
             for (i, name) in names.iter().enumerate() {
-                let _ = write!(s, "{name:<demo_w$}");
+                let _ = write!(s, "{}", pad_right(name, demo_w));
                 for r in rows {
                     let v = pick(r).get(i).copied().unwrap_or(f64::NAN);
                     let _ = write!(s, "  {:>col_w$.prec$}", v * scale);

@@ -3,6 +3,7 @@
 //! splits into.
 
 use dmpscope_core::segment::find_segments;
+use dmpscope_core::text::{pad_right, widest};
 
 use super::inputs::LoadArgs;
 
@@ -34,15 +35,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&infos)?);
         return Ok(());
     }
-    let width = infos.iter().map(|i| i.name.len()).max().unwrap_or(4).max(4);
+    let width = widest(infos.iter().map(|i| i.name.as_str()), 4);
     println!(
         "{:<width$}  {:>7}  {:>8}  {:>8}  {:<26}  goal [m]",
         "demo", "samples", "duration", "rate", "start [m]"
     );
     for i in &infos {
         println!(
-            "{:<width$}  {:>7}  {:>7.3}s  {:>6.1}Hz  {:<26}  {}",
-            i.name,
+            "{}  {:>7}  {:>7.3}s  {:>6.1}Hz  {:<26}  {}",
+            pad_right(&i.name, width),
             i.n_samples,
             i.duration_s,
             i.median_rate_hz,

@@ -1,5 +1,6 @@
 //! `dmpscope regen`: every demo regenerated at one gain pair.
 
+use dmpscope_core::text::{pad_right, width};
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -49,17 +50,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let w = model
         .demos()
         .iter()
-        .map(|d| d.name.len())
-        .max()
-        .unwrap_or(4)
-        .max(4);
+        .map(|d| d.name.as_str())
+        .fold(4, |w, n| w.max(width(n)));
     let _ = writeln!(
         summary,
         "{:<w$}  {:>11}  {:>14}",
         "demo", "d_mean [mm]", "a_peak [m/s^2]"
     );
     for (demo, (d, a)) in model.demos().iter().zip(eval.d.iter().zip(&eval.a_peak)) {
-        let _ = writeln!(summary, "{:<w$}  {:>11.4}  {:>14.3}", demo.name, d * 1e3, a);
+        let _ = writeln!(
+            summary,
+            "{}  {:>11.4}  {:>14.3}",
+            pad_right(&demo.name, w),
+            d * 1e3,
+            a
+        );
     }
     let to_stdout = args
         .out

@@ -20,6 +20,7 @@ mod panels;
 mod plots;
 #[cfg(feature = "testing")]
 mod testing;
+mod timeline;
 mod tradeoff;
 mod view3d;
 mod view_state;

@@ -68,6 +68,8 @@ pub struct ViewState {
     pub rl: RlChoices,
     /// The frame filter as typed (applied on Enter or leaving the field).
     pub frames_text: String,
+    /// The Recording section's timelines of continuous takes.
+    pub timelines: super::timeline::TimelineCache,
     /// The fixed frame as typed.
     pub fixed_frame_text: String,
     /// The topic patterns as typed.
@@ -97,6 +99,7 @@ impl ViewState {
             frames_text: String::new(),
             topics_text: String::new(),
             fixed_frame_text: String::new(),
+            timelines: Default::default(),
             exclude_text: String::new(),
             segment: SegmentSettings::default(),
             model_seen: None,

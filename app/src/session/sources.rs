@@ -182,6 +182,17 @@ impl SourceSlot {
         &self.streams_info
     }
 
+    /// The streams as read, before they are arranged into demos (the
+    /// Recording section's timelines).
+    pub fn raw_streams(&self) -> &[RawDemo] {
+        match &self.streams {
+            Some(Streams {
+                result: Ok(loaded), ..
+            }) => &loaded.demos,
+            _ => &[],
+        }
+    }
+
     /// The topics the reader skipped (their schemas hold no pose), one line
     /// each.
     pub fn skipped_topics(&self) -> Vec<&str> {

@@ -1,24 +1,57 @@
 //! The Recording section: every stream each opened recording holds, kept or
 //! skipped and why (method.md section 11), with a tick to include a stream
 //! the filter skipped or leave out one it kept; the topics that hold no pose
-//! and a source's load error. A tick regroups what was read (nothing is read
+//! and a source's load error; for demos per segment, the thresholds as
+//! sliders and each kept stream's timeline of speed with its segments. A
+//! tick regroups what was read (nothing is read
 //! again); the demos, the model and the landscape follow.
 
 use dmpscope_core::Level;
 use dmpscope_core::arrange::StreamStatus;
 use eframe::egui;
 
+use dmpscope_core::group::Grouping;
+
 use super::super::commands::Command;
+use super::super::timeline::timeline_ui;
+use super::super::view_state::ViewState;
 use super::demos::level_colour;
 use crate::session::{self, Session, Settings};
 
 /// The Recording section.
-pub fn recording_ui(ui: &mut egui::Ui, session: &Session, s: &Settings, out: &mut Vec<Command>) {
+pub fn recording_ui(
+    ui: &mut egui::Ui,
+    session: &Session,
+    s: &mut Settings,
+    view: &mut ViewState,
+    out: &mut Vec<Command>,
+) {
     let min = s.load.streams.min_extent_m;
     if session.recordings().is_empty() {
         ui.label("No recording is open.");
         return;
     }
+    if let Grouping::Segmented(seg) = &mut s.load.demos {
+        // The thresholds beside the timelines they cut (as in Loading).
+        let rows: [(&str, &mut f64, std::ops::RangeInclusive<f64>, &str); 3] = [
+            ("rest speed", &mut seg.rest_speed, 0.005..=0.5, " m/s"),
+            ("shortest rest", &mut seg.min_rest_s, 0.02..=3.0, " s"),
+            ("shortest demo", &mut seg.min_segment_s, 0.05..=5.0, " s"),
+        ];
+        for (name, value, range, unit) in rows {
+            ui.add(
+                egui::Slider::new(value, range)
+                    .logarithmic(true)
+                    .text(name)
+                    .suffix(unit),
+            );
+        }
+        view.segment = *seg;
+    }
+    let segmenting = match s.load.demos {
+        Grouping::Segmented(seg) => Some(seg),
+        _ => None,
+    };
     for (source, slot) in session.recordings().iter().enumerate() {
         let name = slot.source.name();
         let kept = slot.streams().iter().filter(|s| s.status.kept()).count();
@@ -71,6 +104,13 @@ pub fn recording_ui(ui: &mut egui::Ui, session: &Session, s: &Settings, out: &mu
                         }
                     });
                     ui.indent(("stream", source, &stream.topic), |ui| {
+                        if let Some(seg) = segmenting
+                            && stream.status.kept()
+                            && let Some(raw) =
+                                slot.raw_streams().iter().find(|r| r.topic == stream.topic)
+                        {
+                            timeline_ui(ui, &mut view.timelines, source, raw, seg);
+                        }
                         let stats = format!(
                             "{} sample{}, {:.2} s, spans {:.0} mm",
                             stream.samples,

@@ -19,7 +19,7 @@ pub fn side_ui(
     demos::demos_ui(ui, session, view, &mut out);
     ui.separator();
     ui.collapsing("Recording", |ui| {
-        recording::recording_ui(ui, session, s, &mut out)
+        recording::recording_ui(ui, session, s, view, &mut out)
     });
     ui.separator();
     gains::gains_ui(ui, session, s);
