@@ -256,6 +256,7 @@ fn a_continuous_take_shows_its_timeline_and_new_thresholds_recut_it() {
     h.run_steps(2);
     let _timeline =
         h.get_by_label("speed [m/s] over time [s]: 3 segments (shaded), rest below the line");
+    let _count = h.get_by_label_contains("spans 400 mm: 3 demos");
     // A shortest demo longer than each reach leaves none.
     if let dmpscope_core::group::Grouping::Segmented(seg) = &mut h.state_mut().settings.load.demos {
         seg.min_segment_s = 2.0;

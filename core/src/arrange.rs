@@ -217,7 +217,7 @@ pub fn arrange(
                 out.notices.push(Notice::info(format!(
                     "{}: {}: holds {n} movements between rest periods: --demos segment \
                      (the app's Loading: demos per segment) cuts it into demos",
-                    part.file, part.name
+                    part.file, part.topic
                 )));
             }
         }
@@ -230,11 +230,17 @@ pub fn arrange(
             out.streams[*i].demos = 0;
         }
         for demo in &out.demos {
-            if let Some(s) = out
-                .streams
-                .iter_mut()
-                .find(|s| s.topic == demo.topic && s.file == demo.file && s.status.kept())
-            {
+            // A segment's topic is its stream's with `#k`.
+            let stream_topic = demo
+                .topic
+                .rsplit_once('#')
+                .filter(|(_, k)| k.parse::<usize>().is_ok())
+                .map_or(demo.topic.as_str(), |(head, _)| head);
+            if let Some(s) = out.streams.iter_mut().find(|s| {
+                (s.topic == demo.topic || s.topic == stream_topic)
+                    && s.file == demo.file
+                    && s.status.kept()
+            }) {
                 s.demos += 1;
             }
         }
@@ -495,6 +501,8 @@ mod tests {
         assert_eq!(got.demos.len(), 1);
         assert_eq!(got.demos[0].topic, "/tf:hand");
         assert_eq!(got.demos[0].name, "a.mcap");
+        assert_eq!(got.streams[1].demos, 1);
+        assert_eq!(got.streams[0].demos, 0);
     }
 
     #[test]
