@@ -80,6 +80,46 @@ fn pose_chan(topic: &str, samples: &[(i64, [f64; 3])]) -> Chan {
     }
 }
 
+const IDENTITY: [f64; 4] = [0.0, 0.0, 0.0, 1.0];
+
+/// One transform of `child` to `parent`.
+fn tr<'a>(
+    stamp_ns: i64,
+    parent: &'a str,
+    child: &'a str,
+    translation: [f64; 3],
+    rotation: [f64; 4],
+) -> StampedTransform<'a> {
+    StampedTransform {
+        stamp_ns,
+        frame_id: parent,
+        child_frame_id: child,
+        translation,
+        rotation,
+    }
+}
+
+/// A TF channel: one `TFMessage` per entry, logged at its stamp.
+fn tf_chan(topic: &str, messages: &[(i64, Vec<StampedTransform<'_>>)]) -> Chan {
+    Chan {
+        topic: topic.to_owned(),
+        schema: TF,
+        messages: messages
+            .iter()
+            .map(|(t, ts)| (*t, ros2::encode_tf_message(ts)))
+            .collect(),
+    }
+}
+
+/// `/tf` with `child` moving under `parent` along `samples`.
+fn moving(parent: &str, child: &str, samples: &[(i64, [f64; 3])]) -> Chan {
+    let messages: Vec<_> = samples
+        .iter()
+        .map(|&(t, p)| (t, vec![tr(t, parent, child, p, IDENTITY)]))
+        .collect();
+    tf_chan("/tf", &messages)
+}
+
 fn tmp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir()
         .join(format!("dmpscope-recordings-{}", std::process::id()))
@@ -192,46 +232,23 @@ fn a_folder_of_bags_is_walked_and_compressed_bags_load() {
 /// `/goal_pose` (one message), and an aborted 19-sample reach.
 fn tf_bag() -> Vec<u8> {
     let hand = reach(EPOCH, 180);
-    let tf = Chan {
-        topic: "/tf".to_owned(),
-        schema: TF,
-        messages: hand
-            .iter()
-            .map(|&(t, p)| {
-                let ts = [
-                    StampedTransform {
-                        stamp_ns: t,
-                        frame_id: "world",
-                        child_frame_id: "tracker",
-                        translation: p,
-                        rotation: [0.0, 0.0, 0.0, 1.0],
-                    },
-                    StampedTransform {
-                        stamp_ns: t,
-                        frame_id: "base_link",
-                        child_frame_id: "shoulder_link",
-                        translation: [0.0, 0.0, 0.3 + 1e-5 * (t % 3) as f64],
-                        rotation: [0.0, 0.0, 0.0, 1.0],
-                    },
-                ];
-                (t, ros2::encode_tf_message(&ts))
-            })
-            .collect(),
-    };
-    let tf_static = Chan {
-        topic: "/tf_static".to_owned(),
-        schema: TF,
-        messages: vec![(
-            EPOCH,
-            ros2::encode_tf_message(&[StampedTransform {
-                stamp_ns: EPOCH,
-                frame_id: "world",
-                child_frame_id: "base_link",
-                translation: [0.1, 0.0, 0.0],
-                rotation: [0.0, 0.0, 0.0, 1.0],
-            }]),
-        )],
-    };
+    let messages: Vec<_> = hand
+        .iter()
+        .map(|&(t, p)| {
+            let link = [0.0, 0.0, 0.3 + 1e-5 * (t % 3) as f64];
+            let ts = vec![
+                tr(t, "world", "tracker", p, IDENTITY),
+                tr(t, "base_link", "shoulder_link", link, IDENTITY),
+            ];
+            (t, ts)
+        })
+        .collect();
+    let tf = tf_chan("/tf", &messages);
+    let base = [0.1, 0.0, 0.0];
+    let tf_static = tf_chan(
+        "/tf_static",
+        &[(EPOCH, vec![tr(EPOCH, "world", "base_link", base, IDENTITY)])],
+    );
     write(&[
         tf,
         tf_static,
@@ -467,47 +484,17 @@ fn an_export_loads_back_as_the_same_demos_names_included() {
 #[test]
 fn a_fixed_frame_composes_tf_and_tf_static_into_one_frame() {
     // world -> base (static: 1 m along x, turned 90 degrees about z),
-    // base -> tracker (dynamic, at 90 Hz), and a camera frame under world.
+    // base -> tracker (dynamic, at 90 Hz).
     let q = [
         0.0,
         0.0,
         (std::f64::consts::FRAC_PI_4).sin(),
         (std::f64::consts::FRAC_PI_4).cos(),
     ];
-    let statics = Chan {
-        topic: "/tf_static".to_owned(),
-        schema: TF,
-        messages: vec![(
-            EPOCH,
-            ros2::encode_tf_message(&[StampedTransform {
-                stamp_ns: EPOCH,
-                frame_id: "world",
-                child_frame_id: "base",
-                translation: [1.0, 0.0, 0.0],
-                rotation: q,
-            }]),
-        )],
-    };
+    let base = tr(EPOCH, "world", "base", [1.0, 0.0, 0.0], q);
+    let statics = tf_chan("/tf_static", &[(EPOCH, vec![base])]);
     let hand = reach(EPOCH, 150);
-    let tf = Chan {
-        topic: "/tf".to_owned(),
-        schema: TF,
-        messages: hand
-            .iter()
-            .map(|&(t, p)| {
-                (
-                    t,
-                    ros2::encode_tf_message(&[StampedTransform {
-                        stamp_ns: t,
-                        frame_id: "base",
-                        child_frame_id: "tracker",
-                        translation: p,
-                        rotation: [0.0, 0.0, 0.0, 1.0],
-                    }]),
-                )
-            })
-            .collect(),
-    };
+    let tf = moving("base", "tracker", &hand);
     let bytes = write(&[statics, tf]);
     let tracker = |fixed: Option<&str>| {
         let options = LoadOptions {
@@ -547,24 +534,7 @@ fn a_fixed_frame_composes_tf_and_tf_static_into_one_frame() {
             .starts_with("chain.mcap: /tf:tracker: not expressed in map: no transform chain joins"),
         "{err}"
     );
-    let mut channels = vec![pose_chan("/hand", &hand)];
-    channels.push(Chan {
-        topic: "/tf".to_owned(),
-        schema: TF,
-        messages: hand
-            .iter()
-            .map(|&(t, p)| {
-                let tr = StampedTransform {
-                    stamp_ns: t,
-                    frame_id: "base",
-                    child_frame_id: "tracker",
-                    translation: p,
-                    rotation: [0.0, 0.0, 0.0, 1.0],
-                };
-                (t, ros2::encode_tf_message(&[tr]))
-            })
-            .collect(),
-    });
+    let channels = vec![pose_chan("/hand", &hand), moving("base", "tracker", &hand)];
     let loaded = load_source("mixed.mcap", SourceData::Bytes(&write(&channels)), &options)
         .expect("the PoseStamped stream stays");
     assert!(

@@ -172,7 +172,7 @@ fn from_mcap(file: &str, loaded: Loaded) -> SourceDemos {
         |(topic, schema): &(String, String)| format!("{file}: skipped topic {topic} ({schema})");
     let mut notices: Vec<Notice> = if loaded.skipped.len() > SKIPPED_LISTED {
         let mut n = vec![Notice::info(format!(
-            "{file}: skipped {} topics that hold no pose dmpscope reads (-v names them)",
+            "{file}: skipped {} topics that are not demonstrations (-v names each and why)",
             loaded.skipped.len()
         ))];
         n.extend(loaded.skipped.iter().map(|s| Notice::detail(each(s))));
