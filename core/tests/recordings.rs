@@ -545,3 +545,63 @@ fn a_fixed_frame_composes_tf_and_tf_static_into_one_frame() {
         loaded.notices
     );
 }
+
+#[test]
+fn a_fixed_frame_composes_foxglove_frame_transforms_too() {
+    use dmpscope_core::io::foxglove_json::{encode_frame_transforms_json, json_schema};
+    use dmpscope_core::io::foxglove_schemas::{FoxgloveSchema, Transform};
+    let mut w = mcap::WriteOptions::new()
+        .create(Cursor::new(Vec::new()))
+        .expect("writer");
+    let schema = w
+        .add_schema(
+            FoxgloveSchema::FrameTransforms.name(),
+            "jsonschema",
+            json_schema(FoxgloveSchema::FrameTransforms).as_bytes(),
+        )
+        .expect("schema");
+    let id = w
+        .add_channel(schema, "/transforms", "json", &BTreeMap::new())
+        .expect("channel");
+    let hand = reach(EPOCH, 150);
+    for (k, &(t, p)) in hand.iter().enumerate() {
+        let ts = [
+            Transform {
+                stamp_ns: t,
+                parent_frame_id: "world",
+                child_frame_id: "base",
+                translation: [1.0, 0.0, 0.0],
+            },
+            Transform {
+                stamp_ns: t,
+                parent_frame_id: "base",
+                child_frame_id: "tracker",
+                translation: p,
+            },
+        ];
+        let time = u64::try_from(t).expect("stamp");
+        let header = MessageHeader {
+            channel_id: id,
+            sequence: k as u32,
+            log_time: time,
+            publish_time: time,
+        };
+        w.write_to_known_channel(&header, &encode_frame_transforms_json(&ts))
+            .expect("message");
+    }
+    w.finish().expect("finish");
+    let bytes = w.into_inner().into_inner();
+    let options = LoadOptions {
+        fixed_frame: Some("world".into()),
+        ..LoadOptions::default()
+    };
+    let loaded = load_source("fox.mcap", SourceData::Bytes(&bytes), &options).expect("loads");
+    let tracker = loaded
+        .demos
+        .iter()
+        .find(|d| d.topic == "/transforms:tracker")
+        .expect("the tracker");
+    for (p, (_, q)) in tracker.positions.iter().zip(&hand) {
+        assert!((p[0] - (q[0] + 1.0)).abs() < 1e-12 && (p[1] - q[1]).abs() < 1e-12);
+    }
+}

@@ -90,11 +90,29 @@ fn transform<'v>(t: &'v Object, path: &str) -> Result<PoseSample<'v>, String> {
         Some(Value::String(s)) => s.as_str(),
         Some(_) => return Err(format!("{path}child_frame_id is not a string")),
     };
+    let parent = match field(t, "parent_frame_id") {
+        None => "",
+        Some(Value::String(s)) => s.as_str(),
+        Some(_) => return Err(format!("{path}parent_frame_id is not a string")),
+    };
+    let mut rotation = [0.0; 4];
+    if let Some(q) = object(Some(t), "rotation", path)? {
+        for (value, part) in rotation.iter_mut().zip(["x", "y", "z", "w"]) {
+            *value = match field(q, part) {
+                None => 0.0,
+                Some(Value::Number(n)) => n
+                    .as_f64()
+                    .ok_or_else(|| format!("{path}rotation.{part} is not a finite number"))?,
+                Some(_) => return Err(format!("{path}rotation.{part} is not a number")),
+            };
+        }
+    }
     Ok(PoseSample {
         key: Some(Cow::Borrowed(child)),
         stamp_ns: stamp(t, path)?,
         position: vector(Some(t), "translation", path)?,
-        ..PoseSample::default()
+        parent: Some(Cow::Borrowed(parent)),
+        rotation,
     })
 }
 

@@ -35,11 +35,16 @@ struct Position {
     xyz: [FieldDescriptor; 3],
 }
 
-/// The fields of a `foxglove.FrameTransform`.
+/// The fields of a `foxglove.FrameTransform` (the parent and the rotation
+/// only when the schema has them: the TF buffer of `--fixed-frame` needs
+/// them, a plain load does not).
 struct Transform {
     stamp: Stamp,
+    parent: Option<FieldDescriptor>,
     child: FieldDescriptor,
     translation: Position,
+    /// The `rotation` field and its `x`, `y`, `z`, `w`.
+    rotation: Option<(FieldDescriptor, [FieldDescriptor; 4])>,
 }
 
 /// Where the poses are in a message of each schema.
@@ -242,10 +247,18 @@ fn read_xyz(
 
 impl Transform {
     fn resolve(message: &MessageDescriptor) -> Result<Self, String> {
+        let rotation = message_field(message, "rotation", false)
+            .ok()
+            .and_then(|(field, q)| {
+                let part = |n| scalar_field(&q, n, Scalar::Float).ok();
+                Some((field, [part("x")?, part("y")?, part("z")?, part("w")?]))
+            });
         Ok(Self {
             stamp: Stamp::resolve(message)?,
+            parent: scalar_field(message, "parent_frame_id", Scalar::String).ok(),
             child: scalar_field(message, "child_frame_id", Scalar::String)?,
             translation: Position::resolve(message, &["translation"])?,
+            rotation,
         })
     }
 
@@ -257,11 +270,32 @@ impl Transform {
             Cow::Owned(Value::String(s)) => Cow::Owned(s),
             _ => return Err(not_a("string", &self.child)),
         };
+        let parent = match &self.parent {
+            None => None,
+            Some(field) => match msg.get_field(field) {
+                Cow::Borrowed(Value::String(s)) => Some(Cow::Borrowed(s.as_str())),
+                Cow::Owned(Value::String(s)) => Some(Cow::Owned(s)),
+                _ => return Err(not_a("string", field)),
+            },
+        };
+        // An unset rotation reads as zeros, which the TF buffer takes as
+        // the identity.
+        let mut rotation = [0.0; 4];
+        if let Some((field, parts)) = &self.rotation
+            && msg.has_field(field)
+        {
+            let value = msg.get_field(field);
+            let q = value.as_message().ok_or_else(|| not_a("message", field))?;
+            for (v, part) in rotation.iter_mut().zip(parts) {
+                *v = float(&q.get_field(part), part)?;
+            }
+        }
         Ok(PoseSample {
             key: Some(key),
             stamp_ns: self.stamp.read(msg)?,
             position: self.translation.read(msg)?,
-            ..PoseSample::default()
+            parent,
+            rotation,
         })
     }
 }

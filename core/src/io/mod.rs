@@ -41,10 +41,12 @@ pub struct PoseSample<'a> {
     pub stamp_ns: Option<i64>,
     /// The position in metres, in the recording's own axes.
     pub position: [f64; 3],
-    /// For a TF transform, its parent frame (`header.frame_id`), which the
-    /// TF buffer of `--fixed-frame` needs; `None` otherwise.
+    /// For a transform (ROS TF, Foxglove `FrameTransform`), its parent
+    /// frame, which the TF buffer of `--fixed-frame` needs; `None` for
+    /// poses.
     pub parent: Option<Cow<'a, str>>,
-    /// For a TF transform, its rotation `[x, y, z, w]` (unused otherwise).
+    /// For a transform, its rotation `[x, y, z, w]` (all zero when unset,
+    /// taken as the identity; unused for poses).
     pub rotation: [f64; 4],
 }
 
