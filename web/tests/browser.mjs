@@ -248,7 +248,7 @@ try {
 
   // Settings persist in the browser's storage: a preset chosen, the page
   // reloaded, the operating point is still there.
-  await click(270, 363); // "Hrstc4" in the side panel
+  await click(270, 395); // "Hrstc4" in the side panel (below Demos, messages and the Recording row)
   await until("the Hrstc4 button's effect", (s) => s.op[0] === 4 && s.op[1] === 4, 10000);
   await page.reload();
   const reloaded = await until("the reloaded app", (s) => s.demos?.length === 10 && !s.loading, 20000);
