@@ -157,7 +157,7 @@ pub fn arrange(
             file: stream.file.clone(),
             topic: stream.topic.clone(),
             samples: stream.stamps_ns.len(),
-            duration_s: stream.info().duration_s,
+            duration_s: stream.duration_s(),
             extent_m: stream.extent_m(),
             status: StreamStatus::Kept,
             demos: 0,
@@ -222,12 +222,12 @@ pub fn arrange(
             }
         }
     }
-    let parts: Vec<RawDemo> = chosen.iter().map(|(_, p)| p.clone()).collect();
+    let (owners, parts): (Vec<usize>, Vec<RawDemo>) = chosen.into_iter().unzip();
     out.demos = group(parts, &how.demos)?;
     if !matches!(how.demos, Grouping::PerTopic) {
         // Segments and per-file choices no longer map one-to-one to parts.
-        for (i, _) in &chosen {
-            out.streams[*i].demos = 0;
+        for i in owners {
+            out.streams[i].demos = 0;
         }
         for demo in &out.demos {
             // A segment's topic is its stream's with `#k`.
@@ -284,7 +284,7 @@ fn no_time(stream: &RawDemo) -> bool {
 /// segmentation), when that can be said.
 fn movements(stream: &RawDemo) -> Option<usize> {
     let settings = SegmentSettings::default();
-    let total = stream.info().duration_s;
+    let total = stream.duration_s();
     // A single reach has no room for two movements and a rest between.
     if total < 2.0 * settings.min_segment_s + settings.min_rest_s {
         return None;

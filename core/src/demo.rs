@@ -68,6 +68,15 @@ impl RawDemo {
         (stamps, positions)
     }
 
+    /// Last minus first stamp in seconds (0 for fewer than two samples),
+    /// without sorting: the same as [`RawDemo::info`]'s duration.
+    pub fn duration_s(&self) -> f64 {
+        match (self.stamps_ns.iter().min(), self.stamps_ns.iter().max()) {
+            (Some(a), Some(b)) => (b - a) as f64 * 1e-9,
+            _ => 0.0,
+        }
+    }
+
     /// How far the positions spread: the diagonal of their bounding box,
     /// metres (0 for fewer than two samples).
     pub fn extent_m(&self) -> f64 {

@@ -193,19 +193,14 @@ impl SourceSlot {
         }
     }
 
-    /// The topics the reader skipped (their schemas hold no pose), one line
-    /// each.
-    pub fn skipped_topics(&self) -> Vec<&str> {
+    /// The topics the reader skipped (they hold no pose, or are not
+    /// demonstrations), with why.
+    pub fn skipped_topics(&self) -> &[(String, String)] {
         match &self.streams {
             Some(Streams {
                 result: Ok(loaded), ..
-            }) => loaded
-                .notices
-                .iter()
-                .filter(|n| n.text.contains(": skipped topic "))
-                .map(|n| n.text.as_str())
-                .collect(),
-            _ => Vec::new(),
+            }) => &loaded.skipped,
+            _ => &[],
         }
     }
 

@@ -38,6 +38,9 @@ pub struct SourceDemos {
     pub notices: Vec<Notice>,
     /// Every stream and what became of it (filled by [`load_source`]).
     pub streams: Vec<crate::arrange::StreamInfo>,
+    /// Topics the reader did not read, with why (their schema, or what
+    /// they are).
+    pub skipped: Vec<(String, String)>,
 }
 
 /// Loads the streams of a source (one per topic and key), with the frame
@@ -119,12 +122,14 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
                 let loaded = from_mcap(&label, rosbag2::read_file(&file, &label, options)?);
                 out.demos.extend(loaded.demos);
                 out.notices.extend(loaded.notices);
+                out.skipped.extend(loaded.skipped);
             }
             for sub in folders {
                 match load_folder(&sub, options) {
                     Ok(loaded) => {
                         out.demos.extend(loaded.demos);
                         out.notices.extend(loaded.notices);
+                        out.skipped.extend(loaded.skipped);
                     }
                     // A sub-folder without recordings is not an error of the
                     // folder the user named.
@@ -190,6 +195,7 @@ fn from_mcap(file: &str, loaded: Loaded) -> SourceDemos {
         demos: loaded.demos,
         notices,
         streams: Vec::new(),
+        skipped: loaded.skipped,
     }
 }
 

@@ -1,6 +1,6 @@
 //! The Recording section: every stream each opened recording holds, kept or
 //! skipped and why (method.md section 11), with a tick to include a stream
-//! the filter skipped or leave out one it kept; the topics that hold no pose
+//! the filter skipped or leave out one it kept; the topics not read
 //! and a source's load error; for demos per segment, the thresholds as
 //! sliders and each kept stream's timeline of speed with its segments. A
 //! tick regroups what was read (nothing is read
@@ -144,9 +144,9 @@ pub fn recording_ui(
                 }
                 let skipped = slot.skipped_topics();
                 if !skipped.is_empty() {
-                    ui.collapsing(format!("{} topics hold no pose", skipped.len()), |ui| {
-                        for t in skipped {
-                            ui.label(t);
+                    ui.collapsing(format!("{} topics not read", skipped.len()), |ui| {
+                        for (topic, why) in skipped {
+                            ui.label(format!("{topic} ({why})"));
                         }
                     });
                 }
