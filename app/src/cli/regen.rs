@@ -1,17 +1,32 @@
-//! `dmpscope regen`: every demo regenerated at one gain pair.
-
-use dmpscope_core::text::{pad_right, width};
-use std::fmt::Write;
-use std::path::PathBuf;
+//! `dmpscope regen`: demos regenerated at one gain pair, or generalised to
+//! a new start, goal and duration (method.md section 10), written as CSV,
+//! MCAP (Foxglove poses plus ROS 2 trajectories) or the DMP export of
+//! `docs/export.md`.
 
 use std::collections::BTreeMap;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use dmpscope_core::io::export::{dmp_export, regenerated_paths, write_pose_in_frame_json};
-use dmpscope_core::{Model, RawDemo};
+use dmpscope_core::io::dmp_doc::{DocContext, dmp_document};
+use dmpscope_core::io::export::{
+    ExportPath, ROLE_REGENERATED, TrajectoryExport, topic_safe, write_export_mcap,
+};
+use dmpscope_core::io::ros_traj::TimedPath;
+use dmpscope_core::text::{pad_right, width};
+use dmpscope_core::{Generalised, Model, Primitive, RawDemo, Scaling, Skill, Target};
 
 use super::inputs::{InputArgs, load_model};
 use super::output::write_text;
+
+/// Spatial scaling on the command line.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum ScalingArg {
+    /// The paper's per-axis factor (g'-y0')/(g-y0).
+    Paper,
+    /// Frame-independent: rotation and uniform scale of g-y0 onto g'-y0'.
+    Frame,
+}
 
 /// Arguments of `regen`.
 #[derive(Debug, clap::Args)]
@@ -24,137 +39,387 @@ pub struct Args {
     /// K/M.
     #[arg(long)]
     km: f64,
-    /// Write the paths here: `.csv` (every regenerated path, `-` for stdout),
-    /// `.mcap` (demos and regenerated paths as `foxglove.PoseInFrame` JSON,
-    /// gains as metadata: opens in Foxglove and Rerun) or `.json` (gains and
-    /// DMP weights per demo and axis).
+    /// Only this demo (1-based, in `dmpscope info` order).
+    #[arg(long, conflicts_with = "skill")]
+    demo: Option<usize>,
+    /// The skill of all demos: the mean of their forcing terms in the
+    /// scaling's frame, with a band of +-1 SD.
+    #[arg(long)]
+    skill: bool,
+    /// New start, metres (default: the demo's own).
+    #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], allow_negative_numbers = true)]
+    start: Option<Vec<f64>>,
+    /// New goal, metres (default: the demo's own).
+    #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], allow_negative_numbers = true)]
+    goal: Option<Vec<f64>>,
+    /// New duration T', seconds (default: the demo's own).
+    #[arg(long, allow_negative_numbers = true)]
+    duration: Option<f64>,
+    /// How the forcing term follows a moved goal.
+    #[arg(long, value_enum, default_value = "paper")]
+    scaling: ScalingArg,
+    /// Write the paths here: `.csv` (every path, real-time velocity and
+    /// acceleration; `-` for stdout), `.mcap` (demos and paths as
+    /// `foxglove.PoseInFrame` JSON, each path also as ROS 2
+    /// `nav_msgs/msg/Path` and `trajectory_msgs/msg/MultiDOFJointTrajectory`,
+    /// gains as metadata) or `.json` (one DMP a controller can run,
+    /// docs/export.md; needs --demo or --skill).
     #[arg(long, short)]
     out: Option<PathBuf>,
 }
 
-/// Prints per demo d_mean and a_peak, and writes the paths.
+/// One path to report and write.
+struct Run {
+    primitive: Primitive,
+    out: Generalised,
+    /// The model's demo index, for a demo's own comparison and stamps.
+    demo: Option<usize>,
+    /// Skills: the forcing SD and members.
+    skill: Option<Skill>,
+}
+
+fn vec3(what: &str, v: &Option<Vec<f64>>) -> anyhow::Result<Option<[f64; 3]>> {
+    match v.as_deref() {
+        None => Ok(None),
+        Some([x, y, z]) => Ok(Some([*x, *y, *z])),
+        Some(other) => anyhow::bail!("{what} takes three numbers X Y Z, got {}", other.len()),
+    }
+}
+
+/// Prints per path d_mean, a_peak, peak speed and final error, and writes
+/// the paths.
 pub fn run(args: Args) -> anyhow::Result<()> {
     for (name, v) in [("--dm", args.dm), ("--km", args.km)] {
         if !(v.is_finite() && v > 0.0) {
             anyhow::bail!("{name} must be a positive number, got {v}");
         }
     }
-    let (raw, model) = load_model(&args.input)?;
-    let eval = model.evaluate(args.dm, args.km);
-    let mut summary = String::new();
-    let _ = writeln!(
-        summary,
-        "D/M = {}, K/M = {}, zeta = {:.4}, S = {:.6}, sum d = {:.6} m",
-        args.dm, args.km, eval.zeta, eval.s, eval.d_sum
-    );
-    let w = model
-        .demos()
-        .iter()
-        .map(|d| d.name.as_str())
-        .fold(4, |w, n| w.max(width(n)));
-    let _ = writeln!(
-        summary,
-        "{:<w$}  {:>11}  {:>14}",
-        "demo", "d_mean [mm]", "a_peak [m/s^2]"
-    );
-    for (demo, (d, a)) in model.demos().iter().zip(eval.d.iter().zip(&eval.a_peak)) {
-        let _ = writeln!(
-            summary,
-            "{}  {:>11.4}  {:>14.3}",
-            pad_right(&demo.name, w),
-            d * 1e3,
-            a
-        );
+    let scaling = match args.scaling {
+        ScalingArg::Paper => Scaling::Paper,
+        ScalingArg::Frame => Scaling::Frame,
+    };
+    let target = Target {
+        start: vec3("--start", &args.start)?,
+        goal: vec3("--goal", &args.goal)?,
+        duration_s: args.duration,
+        scaling,
+    };
+    if let Some(d) = target.duration_s
+        && !(d.is_finite() && d > 0.0)
+    {
+        anyhow::bail!("--duration must be a positive number of seconds, got {d}");
     }
-    let to_stdout = args
+    let extension = args
         .out
         .as_deref()
-        .is_some_and(|p| p == std::path::Path::new("-"));
+        .and_then(|p| p.extension())
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    if extension.as_deref() == Some("json") && args.demo.is_none() && !args.skill {
+        anyhow::bail!(
+            "a .json export holds one DMP: pass --demo N (1-based) or --skill to choose it"
+        );
+    }
+    let (raw, model) = load_model(&args.input)?;
+    let n = model.demos().len();
+    if let Some(d) = args.demo
+        && (d == 0 || d > n)
+    {
+        anyhow::bail!("--demo must be between 1 and {n}, got {d}");
+    }
+    let runs = make_runs(&model, &args, &target)?;
+    for r in &runs {
+        for w in &r.out.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    let summary = summary(&model, &args, &runs);
+    let to_stdout = args.out.as_deref().is_some_and(|p| p == Path::new("-"));
     if to_stdout {
         eprint!("{summary}");
     } else {
         print!("{summary}");
     }
-    let Some(out) = args.out else {
-        eprintln!("note: pass --out F.csv, F.mcap or F.json to write the regenerated paths");
+    let Some(out) = args.out.as_deref() else {
+        eprintln!("note: pass --out F.csv, F.mcap or F.json to write the paths");
         return Ok(());
     };
-    let extension = out
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
+    let frame_id = args
+        .input
+        .load
+        .fixed_frame
+        .clone()
+        .unwrap_or_else(|| "world".to_owned());
     match extension.as_deref() {
-        Some("mcap") => return write_mcap(&out, &raw, &model, args.dm, args.km),
+        Some("mcap") => write_mcap(out, &raw, &model, &args, &runs, &frame_id),
         Some("json") => {
-            let doc = dmp_export(&model, args.dm, args.km);
-            let mut text = serde_json::to_string_pretty(&doc)?;
+            let r = &runs[0];
+            let doc = dmp_document(
+                &r.primitive,
+                &r.out,
+                DocContext {
+                    demos: match &r.skill {
+                        Some(s) => s.demos.clone(),
+                        None => vec![r.primitive.name.clone()],
+                    },
+                    source: if r.skill.is_some() { "skill" } else { "demo" },
+                    basis: (&model.basis().centres, &model.basis().widths),
+                    frame_id,
+                    band: r.skill.as_ref().map(|_| r.out.band.clone()),
+                    scaling,
+                },
+            )
+            .with_context(|| format!("{}: not written", out.display()))?;
+            let mut text = serde_json::to_string(&doc)?;
             text.push('\n');
-            return write_text(Some(&out), &text);
+            write_text(Some(out), &text)?;
+            eprintln!("wrote the DMP of {} to {}", r.primitive.name, out.display());
+            Ok(())
         }
-        _ => {}
+        _ => write_text(Some(out), &csv(&model, &runs)),
     }
-    let mut csv = String::from("demo,s,t_s,x,y,z,demo_x,demo_y,demo_z,vx,vy,vz,ax,ay,az\n");
-    for (i, demo) in model.demos().iter().enumerate() {
-        let path = model.rollout(i, args.dm, args.km);
-        let n = demo.len();
+}
+
+fn make_runs(model: &Model, args: &Args, target: &Target) -> anyhow::Result<Vec<Run>> {
+    let run_of = |primitive: Primitive, demo, skill| -> anyhow::Result<Run> {
+        let out = primitive.rollout(target).map_err(|e| match e {
+            dmpscope_core::Error::InvalidSetting(m) => anyhow::anyhow!(m),
+            other => other.into(),
+        })?;
+        Ok(Run {
+            primitive,
+            out,
+            demo,
+            skill,
+        })
+    };
+    if args.skill {
+        let skill = Skill::new(model, args.dm, args.km, target.scaling)?;
+        return Ok(vec![run_of(skill.primitive.clone(), None, Some(skill))?]);
+    }
+    let which: Vec<usize> = match args.demo {
+        Some(d) => vec![d - 1],
+        None => (0..model.demos().len()).collect(),
+    };
+    which
+        .into_iter()
+        .map(|i| run_of(Primitive::of_demo(model, i, args.dm, args.km)?, Some(i), None))
+        .collect()
+}
+
+/// Whether a run is at its demo's own start, goal and duration.
+fn own_target(args: &Args) -> bool {
+    args.start.is_none() && args.goal.is_none() && args.duration.is_none()
+}
+
+fn summary(model: &Model, args: &Args, runs: &[Run]) -> String {
+    let eval = model.evaluate(args.dm, args.km);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "D/M = {}, K/M = {}, zeta = {:.4}, S = {:.6}, sum d = {:.6} m",
+        args.dm, args.km, eval.zeta, eval.s, eval.d_sum
+    );
+    let w = runs
+        .iter()
+        .map(|r| r.primitive.name.as_str())
+        .fold(4, |w, n| w.max(width(n)));
+    let _ = writeln!(
+        s,
+        "{:<w$}  {:>11}  {:>14}  {:>7}  {:>10}  {:>15}  {:>9}",
+        "path", "d_mean [mm]", "a_peak [m/s^2]", "T' [s]", "v_max [m/s]", "a_max [m/s^2]", "end [mm]"
+    );
+    for r in runs {
+        let d = match (r.demo, own_target(args)) {
+            (Some(i), true) => format!("{:.4}", eval.d[i] * 1e3),
+            _ => "-".to_owned(),
+        };
+        let unit_peak = r
+            .out
+            .unit
+            .a
+            .iter()
+            .map(|a| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt())
+            .fold(0.0, f64::max);
+        let _ = writeln!(
+            s,
+            "{}  {d:>11}  {unit_peak:>14.3}  {:>7.3}  {:>10.4}  {:>15.4}  {:>9.3}",
+            pad_right(&r.primitive.name, w),
+            r.out.duration_s,
+            r.out.peak_speed,
+            r.out.a_peak,
+            r.out.final_error * 1e3
+        );
+    }
+    let _ = writeln!(
+        s,
+        "(a_peak in unit time as in Table I; v_max, a_max in real time over T'; end: distance of the last point from the goal)"
+    );
+    s
+}
+
+fn csv(model: &Model, runs: &[Run]) -> String {
+    let mut csv = String::from(
+        "demo,s,t_s,x,y,z,demo_x,demo_y,demo_z,vx,vy,vz,ax,ay,az,sd_x,sd_y,sd_z\n",
+    );
+    for r in runs {
+        let demo = r.demo.map(|i| &model.demos()[i]);
+        let n = r.out.t.len();
         for k in 0..n {
             let s = k as f64 / (n - 1) as f64;
-            let p: [f64; 3] = std::array::from_fn(|ax| path.y[k][ax] + demo.p0[ax]);
-            let q: [f64; 3] = std::array::from_fn(|ax| demo.y_raw[k][ax] + demo.p0[ax]);
-            let (v, a) = (path.v[k], path.a[k]);
+            let p = r.out.unit.y[k];
+            let (v, a) = (r.out.v[k], r.out.a[k]);
+            let target = match demo {
+                Some(d) if k < d.y_raw.len() => {
+                    let q = d.y_raw[k];
+                    format!(
+                        "{},{},{}",
+                        q[0] + d.p0[0],
+                        q[1] + d.p0[1],
+                        q[2] + d.p0[2]
+                    )
+                }
+                _ => ",,".to_owned(),
+            };
+            let band = match r.out.band.get(k) {
+                Some(b) => format!("{},{},{}", b[0], b[1], b[2]),
+                None => ",,".to_owned(),
+            };
             let _ = writeln!(
                 csv,
-                "{},{s},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                demo.name,
-                s * demo.duration_s,
-                p[0],
-                p[1],
-                p[2],
-                q[0],
-                q[1],
-                q[2],
-                v[0],
-                v[1],
-                v[2],
-                a[0],
-                a[1],
-                a[2]
+                "{},{s},{},{},{},{},{target},{},{},{},{},{},{},{band}",
+                r.primitive.name, r.out.t[k], p[0], p[1], p[2], v[0], v[1], v[2], a[0], a[1], a[2]
             );
         }
     }
-    write_text(Some(&out), &csv)
+    csv
 }
 
-/// Writes demos and regenerated paths as `foxglove.PoseInFrame` (JSON) with
-/// the gains as metadata.
+/// Writes the demos and each path as `foxglove.PoseInFrame` (JSON), each
+/// path also as ROS 2 `nav_msgs/msg/Path` and `MultiDOFJointTrajectory`,
+/// with the gains as metadata.
 fn write_mcap(
-    out: &std::path::Path,
+    out: &Path,
     raw: &[RawDemo],
     model: &Model,
-    dm: f64,
-    km: f64,
+    args: &Args,
+    runs: &[Run],
+    frame_id: &str,
 ) -> anyhow::Result<()> {
-    let first_stamps: Vec<i64> = raw
-        .iter()
-        .map(|r| r.stamps_ns.iter().min().copied().unwrap_or(0))
-        .collect();
-    let paths = regenerated_paths(model, &first_stamps, dm, km);
-    let eval = model.evaluate(dm, km);
-    let metadata: BTreeMap<String, String> = [
-        ("dm", dm.to_string()),
-        ("km", km.to_string()),
+    let first_stamp = |i: usize| {
+        raw.get(i)
+            .and_then(|r| r.stamps_ns.iter().min().copied())
+            .unwrap_or(0)
+    };
+    let mut paths = Vec::new();
+    let mut taken = std::collections::HashSet::new();
+    let mut unique = |name: &str| {
+        let base = topic_safe(name);
+        let mut short = base.clone();
+        let mut k = 1;
+        while !taken.insert(short.clone()) {
+            k += 1;
+            short = format!("{base}_{k}");
+        }
+        short
+    };
+    let mut shorts = Vec::new();
+    for (i, demo) in model.demos().iter().enumerate() {
+        let start = first_stamp(i);
+        let n = demo.len();
+        let short = unique(&demo.name);
+        shorts.push(short.clone());
+        paths.push(ExportPath {
+            topic: format!("/demo/{short}"),
+            name: demo.name.clone(),
+            role: "demonstration",
+            samples: demo
+                .y_raw
+                .iter()
+                .enumerate()
+                .map(|(k, p)| {
+                    let t = demo.duration_s * k as f64 / (n - 1) as f64;
+                    (
+                        start + (t * 1e9).round() as i64,
+                        std::array::from_fn(|a| p[a] + demo.p0[a]),
+                    )
+                })
+                .collect(),
+        });
+    }
+    let mut trajectories = Vec::new();
+    for r in runs {
+        let start = first_stamp(r.demo.unwrap_or(0));
+        let short = match r.demo {
+            Some(i) => shorts[i].clone(),
+            None => unique(&r.primitive.name),
+        };
+        paths.push(ExportPath {
+            topic: format!("/regen/{short}"),
+            name: r.primitive.name.clone(),
+            role: ROLE_REGENERATED,
+            samples: r
+                .out
+                .t
+                .iter()
+                .zip(&r.out.unit.y)
+                .map(|(t, p)| (start + (t * 1e9).round() as i64, *p))
+                .collect(),
+        });
+        trajectories.push(TrajectoryExport {
+            prefix: format!("/dmp/{short}"),
+            name: r.primitive.name.clone(),
+            path: TimedPath {
+                frame_id: frame_id.to_owned(),
+                joint: "end_effector".to_owned(),
+                stamp_ns: start,
+                t: r.out.t.clone(),
+                y: r.out.unit.y.clone(),
+                v: r.out.v.clone(),
+                a: r.out.a.clone(),
+            },
+        });
+    }
+    let eval = model.evaluate(args.dm, args.km);
+    let mut metadata: BTreeMap<String, String> = [
+        ("dm", args.dm.to_string()),
+        ("km", args.km.to_string()),
         ("zeta", eval.zeta.to_string()),
         ("s", eval.s.to_string()),
         ("d_sum", eval.d_sum.to_string()),
         ("demos", model.demos().len().to_string()),
+        ("scaling", args.scaling_name().to_owned()),
     ]
     .into_iter()
     .map(|(k, v)| (k.to_owned(), v))
     .collect();
+    if let Some(d) = args.duration {
+        metadata.insert("duration_s".into(), d.to_string());
+    }
     let file =
         std::fs::File::create(out).with_context(|| format!("{}: cannot create", out.display()))?;
-    write_pose_in_frame_json(std::io::BufWriter::new(file), &paths, "world", &metadata)
-        .with_context(|| format!("{}: cannot write MCAP", out.display()))?;
-    eprintln!("wrote {} paths to {}", paths.len(), out.display());
+    write_export_mcap(
+        std::io::BufWriter::new(file),
+        &paths,
+        &trajectories,
+        frame_id,
+        &metadata,
+    )
+    .with_context(|| format!("{}: cannot write MCAP", out.display()))?;
+    eprintln!(
+        "wrote {} demos and {} paths (each also as nav_msgs/Path and MultiDOFJointTrajectory) to {}",
+        model.demos().len(),
+        runs.len(),
+        out.display()
+    );
     Ok(())
+}
+
+impl Args {
+    fn scaling_name(&self) -> &'static str {
+        match self.scaling {
+            ScalingArg::Paper => "paper",
+            ScalingArg::Frame => "frame",
+        }
+    }
 }

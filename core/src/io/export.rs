@@ -1,15 +1,19 @@
 //! The reverse path: demos and regenerated paths written so that Foxglove
 //! and Rerun open them (`foxglove.PoseInFrame`, JSON encoding, one topic per
-//! path, the gains as MCAP metadata), and the fitted DMP as JSON.
+//! path, the gains as MCAP metadata), and ROS 2 trajectories beside them.
+//! The DMP itself is exported by [`super::dmp_doc`].
 
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};
 
 use mcap::records::{MessageHeader, Metadata};
-use serde::Serialize;
 
 use super::foxglove_json::{encode_pose_in_frame_json, json_schema};
 use super::foxglove_schemas::FoxgloveSchema;
+use super::ros_traj::{
+    MULTI_DOF_NAME, PATH_NAME, TimedPath, encode_multi_dof, encode_path, multi_dof_schema,
+    path_schema,
+};
 use crate::model::Model;
 
 /// The channel metadata key holding a demo's name: loading an export gives
@@ -20,6 +24,10 @@ pub const NAME_KEY: &str = "dmpscope.name";
 pub const ROLE_KEY: &str = "dmpscope.role";
 /// The role of a regenerated path.
 pub const ROLE_REGENERATED: &str = "regenerated";
+
+/// The role of an exported ROS trajectory (`nav_msgs/msg/Path`,
+/// `MultiDOFJointTrajectory`); never loaded as a demo.
+pub const ROLE_TRAJECTORY: &str = "trajectory";
 
 /// A path to export: its topic and `(stamp_ns, position)` samples.
 pub struct ExportPath {
@@ -108,6 +116,32 @@ pub fn write_pose_in_frame_json<W: Write + Seek>(
     frame_id: &str,
     metadata: &BTreeMap<String, String>,
 ) -> mcap::McapResult<W> {
+    write_export_mcap(out, paths, &[], frame_id, metadata)
+}
+
+/// A path to export as ROS 2 trajectories.
+pub struct TrajectoryExport {
+    /// Topic prefix: the messages go to `<prefix>/path` and
+    /// `<prefix>/trajectory`.
+    pub prefix: String,
+    /// The path's name, kept as channel metadata ([`NAME_KEY`]).
+    pub name: String,
+    /// The path in real time.
+    pub path: TimedPath,
+}
+
+/// [`write_pose_in_frame_json`] plus each of `trajectories` as one ROS 2
+/// `nav_msgs/msg/Path` on `<prefix>/path` and one
+/// `trajectory_msgs/msg/MultiDOFJointTrajectory` on `<prefix>/trajectory`
+/// (CDR), both with the role [`ROLE_TRAJECTORY`] so loading the file skips
+/// them.
+pub fn write_export_mcap<W: Write + Seek>(
+    out: W,
+    paths: &[ExportPath],
+    trajectories: &[TrajectoryExport],
+    frame_id: &str,
+    metadata: &BTreeMap<String, String>,
+) -> mcap::McapResult<W> {
     let mut writer = mcap::WriteOptions::new()
         .library(concat!("dmpscope/", env!("CARGO_PKG_VERSION")))
         .create(out)?;
@@ -141,76 +175,38 @@ pub fn write_pose_in_frame_json<W: Write + Seek>(
             &encode_pose_in_frame_json(stamp, frame_id, position),
         )?;
     }
+    if !trajectories.is_empty() {
+        let path_schema = writer.add_schema(PATH_NAME, "ros2msg", path_schema().as_bytes())?;
+        let dof_schema =
+            writer.add_schema(MULTI_DOF_NAME, "ros2msg", multi_dof_schema().as_bytes())?;
+        for t in trajectories {
+            let (traj, prefix) = (&t.path, &t.prefix);
+            let meta = BTreeMap::from([
+                (NAME_KEY.to_owned(), t.name.clone()),
+                (ROLE_KEY.to_owned(), ROLE_TRAJECTORY.to_owned()),
+            ]);
+            let time = u64::try_from(traj.stamp_ns).unwrap_or(0);
+            let header = |channel_id| MessageHeader {
+                channel_id,
+                sequence: 0,
+                log_time: time,
+                publish_time: time,
+            };
+            let ch = writer.add_channel(path_schema, &format!("{prefix}/path"), "cdr", &meta)?;
+            writer.write_to_known_channel(&header(ch), &encode_path(traj))?;
+            let ch = writer.add_channel(
+                dof_schema,
+                &format!("{prefix}/trajectory"),
+                "cdr",
+                &meta,
+            )?;
+            writer.write_to_known_channel(&header(ch), &encode_multi_dof(traj))?;
+        }
+    }
     writer.write_metadata(&Metadata {
         name: "dmpscope".into(),
         metadata: metadata.clone(),
     })?;
     writer.finish()?;
     Ok(writer.into_inner())
-}
-
-/// The fitted DMP of one demo at given gains, for `--out F.json`.
-#[derive(Clone, Debug, Serialize)]
-pub struct DemoDmp {
-    /// The demo's name.
-    pub name: String,
-    /// Duration T (the paper's M), seconds.
-    pub duration_s: f64,
-    /// Start (absolute), metres.
-    pub start: [f64; 3],
-    /// Goal (absolute), metres.
-    pub goal: [f64; 3],
-    /// LWR weights per axis (`x`, `y`, `z`).
-    pub weights: [Vec<f64>; 3],
-    /// d at these gains, metres.
-    pub d: f64,
-    /// a_peak at these gains.
-    pub a_peak: f64,
-}
-
-/// The gains, the basis and every demo's weights at `(dm, km)`.
-#[derive(Clone, Debug, Serialize)]
-pub struct DmpExport {
-    /// D/M.
-    pub dm: f64,
-    /// K/M.
-    pub km: f64,
-    /// Damping ratio.
-    pub zeta: f64,
-    /// `alpha_x` of the canonical system.
-    pub alpha_x: f64,
-    /// Basis centres `c_i`.
-    pub centres: Vec<f64>,
-    /// Basis widths `h_i`.
-    pub widths: Vec<f64>,
-    /// Per demo.
-    pub demos: Vec<DemoDmp>,
-}
-
-/// The export of a model at `(dm, km)`.
-pub fn dmp_export(model: &Model, dm: f64, km: f64) -> DmpExport {
-    let eval = model.evaluate(dm, km);
-    let demos = model
-        .demos()
-        .iter()
-        .enumerate()
-        .map(|(i, d)| DemoDmp {
-            name: d.name.clone(),
-            duration_s: d.duration_s,
-            start: d.p0,
-            goal: std::array::from_fn(|ax| d.goal[ax] + d.p0[ax]),
-            weights: std::array::from_fn(|ax| model.projections(i).weights_at(ax, dm, km)),
-            d: eval.d[i],
-            a_peak: eval.a_peak[i],
-        })
-        .collect();
-    DmpExport {
-        dm,
-        km,
-        zeta: eval.zeta,
-        alpha_x: model.settings().alpha_x,
-        centres: model.basis().centres.clone(),
-        widths: model.basis().widths.clone(),
-        demos,
-    }
 }

@@ -251,6 +251,16 @@ impl Collector<'_> {
                 .iter()
                 .any(|p| crate::arrange::matches_stream(p, t))
         };
+        let exported_trajectory = ch.metadata.get(super::export::ROLE_KEY).map(String::as_str)
+            == Some(super::export::ROLE_TRAJECTORY);
+        if exported_trajectory {
+            self.skipped.push((
+                ch.topic.clone(),
+                format!("a trajectory dmpscope exported ({name}), not a demonstration"),
+            ));
+            self.channels.insert(ch.id, None);
+            return Ok(());
+        }
         if regenerated && !asked(&ch.topic) {
             self.skipped.push((
                 ch.topic.clone(),

@@ -10,6 +10,7 @@
 pub mod cdr;
 pub mod chunks;
 pub mod csv;
+pub mod dmp_doc;
 pub mod export;
 pub mod foxglove_json;
 pub mod foxglove_proto;
@@ -17,6 +18,7 @@ pub mod foxglove_schemas;
 pub mod mcap_file;
 pub mod ros1;
 pub mod ros2;
+pub mod ros_traj;
 pub mod rosbag2;
 pub mod source;
 pub mod write;

@@ -1,0 +1,338 @@
+//! The DMP export a controller can run (`docs/export.md`, schema
+//! `docs/dmpscope.dmp.schema.json`): the equations in words, every number
+//! they need, and a golden rollout to check an implementation against.
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::generalise::{Generalised, Primitive, Scaling};
+
+/// The schema's name (no URL: it is a name, not a location).
+pub const SCHEMA: &str = "dmpscope.dmp";
+/// The schema's version; a reader refuses any other.
+pub const VERSION: u32 = 1;
+
+/// The equations, in symbols with their words.
+#[derive(Clone, Debug, Serialize)]
+pub struct Equations {
+    /// The transformation system in unit time.
+    pub transformation_system: &'static str,
+    /// The canonical system.
+    pub canonical_system: &'static str,
+    /// The forcing term and its basis.
+    pub forcing_term: &'static str,
+    /// How the forcing term and initial velocity follow the new start and
+    /// goal, for this document's mode.
+    pub spatial_scaling: &'static str,
+    /// The integration scheme.
+    pub integration: &'static str,
+    /// How unit time maps to real time.
+    pub unit_time: &'static str,
+}
+
+/// The integration grid.
+#[derive(Clone, Debug, Serialize)]
+pub struct Integration {
+    /// `semi_implicit_euler`.
+    pub scheme: &'static str,
+    /// Grid points n (the rollout has n samples).
+    pub points: usize,
+    /// Unit-time step `1 / (n - 1)`.
+    pub dt: f64,
+}
+
+/// A gain pair.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct GainPair {
+    /// Damping over mass.
+    pub d: f64,
+    /// Stiffness over mass.
+    pub k: f64,
+}
+
+/// The gains in unit time and their real-time equivalents for `tau`.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Gains {
+    /// D/M and K/M of the unit-time system (what was extracted).
+    pub unit_time: GainPair,
+    /// `D/M / tau` and `K/M / tau^2`: the same motion written in seconds.
+    pub real_time: GainPair,
+    /// Damping ratio `D / (2 sqrt(K))` (the same in both).
+    pub zeta: f64,
+}
+
+/// The radial basis.
+#[derive(Clone, Debug, Serialize)]
+pub struct BasisDoc {
+    /// Number of basis functions B.
+    pub count: usize,
+    /// True: centres and widths live in phase x, not in time.
+    pub in_phase: bool,
+    /// Centres `c_i`.
+    pub centres: Vec<f64>,
+    /// Widths `h_i`.
+    pub widths: Vec<f64>,
+}
+
+/// LWR weights per axis.
+#[derive(Clone, Debug, Serialize)]
+pub struct Weights {
+    /// x axis.
+    pub x: Vec<f64>,
+    /// y axis.
+    pub y: Vec<f64>,
+    /// z axis.
+    pub z: Vec<f64>,
+}
+
+/// The spatial scaling used.
+#[derive(Clone, Debug, Serialize)]
+pub struct ScalingDoc {
+    /// `paper` or `frame`.
+    pub mode: &'static str,
+    /// The 3 x 3 map it gives for this document's y0, g, y0_new, g_new
+    /// (row-major), for checking an implementation's.
+    pub matrix: [[f64; 3]; 3],
+}
+
+/// Units of the numbers.
+#[derive(Clone, Debug, Serialize)]
+pub struct Units {
+    /// Positions.
+    pub position: &'static str,
+    /// Real time.
+    pub time: &'static str,
+    /// Real-time velocity.
+    pub velocity: &'static str,
+    /// Real-time acceleration.
+    pub acceleration: &'static str,
+}
+
+/// The golden rollout: real time from 0 to tau.
+#[derive(Clone, Debug, Serialize)]
+pub struct RolloutDoc {
+    /// Seconds.
+    pub t: Vec<f64>,
+    /// Positions, starting exactly at `y0_new`.
+    pub y: Vec<[f64; 3]>,
+    /// Velocities, m/s.
+    pub v: Vec<[f64; 3]>,
+    /// Accelerations, m/s^2.
+    pub a: Vec<[f64; 3]>,
+}
+
+/// One exported DMP.
+#[derive(Clone, Debug, Serialize)]
+pub struct DmpDocument {
+    /// [`SCHEMA`].
+    pub schema: &'static str,
+    /// [`VERSION`].
+    pub version: u32,
+    /// The demo's name, or `skill (N demos)`.
+    pub name: String,
+    /// `demo` or `skill`.
+    pub source: &'static str,
+    /// The demos it was made from.
+    pub demos: Vec<String>,
+    /// The equations.
+    pub equations: Equations,
+    /// The integration grid.
+    pub integration: Integration,
+    /// Duration of the motion, seconds (T').
+    pub tau: f64,
+    /// The fitted motion's own duration, seconds.
+    pub fitted_duration_s: f64,
+    /// The gains.
+    pub gains: Gains,
+    /// Decay of the canonical system.
+    pub alpha_x: f64,
+    /// The basis.
+    pub basis: BasisDoc,
+    /// LWR weights of the forcing term per axis.
+    pub weights: Weights,
+    /// `y'(0)` in unit time of the fitted motion (scaled like the forcing
+    /// term before use).
+    pub initial_velocity: [f64; 3],
+    /// Fitted start, metres.
+    pub y0: [f64; 3],
+    /// Fitted goal, metres.
+    pub g: [f64; 3],
+    /// New start, metres.
+    pub y0_new: [f64; 3],
+    /// New goal, metres.
+    pub g_new: [f64; 3],
+    /// The scaling.
+    pub scaling: ScalingDoc,
+    /// The frame the positions are in.
+    pub frame_id: String,
+    /// The up axis of that frame (`z`: ROS REP 103).
+    pub up_axis: &'static str,
+    /// Units.
+    pub units: Units,
+    /// The golden rollout.
+    pub rollout: RolloutDoc,
+    /// Skills: per-time SD of the members' positions at the new target
+    /// (metres), beside `rollout.y`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rollout_sd: Option<Vec<[f64; 3]>>,
+}
+
+const TRANSFORMATION: &str = "y''(u) = -D_M y'(u) - K_M (y(u) - g_new) + Q f(x(u)), per axis, \
+     u in [0, 1] unit time, y' = dy/du; D_M, K_M = gains.unit_time.d, .k";
+const CANONICAL: &str = "x(u) = exp(-alpha_x u), x(0) = 1 (closed form, not integrated)";
+const FORCING: &str = "f_a(x) = x sum_i psi_i(x) w_a,i / sum_i psi_i(x), \
+     psi_i(x) = exp(-h_i (x - c_i)^2); c = basis.centres, h = basis.widths, w_a = weights.<axis>";
+const SCALING_PAPER: &str = "paper: Q = diag(m_a), m_a = (g_new_a - y0_new_a) / (g_a - y0_a), \
+     m_a = 1 where |g_a - y0_a| < 1e-9; Q is the identity when g_new - y0_new = g - y0";
+const SCALING_FRAME: &str = "frame: Q = s R, s = |g_new - y0_new| / |g - y0|, R the smallest \
+     rotation taking (g - y0) / |g - y0| to (g_new - y0_new) / |g_new - y0_new| (Rodrigues; \
+     identity when parallel); Q is the identity when g_new - y0_new = g - y0";
+const INTEGRATION: &str = "semi-implicit Euler on u_k = k dt, k = 0..n-1, dt = 1/(n-1): \
+     y_0 = y0_new, v_0 = Q initial_velocity; a_k = -D_M v_k - K_M (y_k - g_new) + Q f(x(u_k)); \
+     v_{k+1} = v_k + a_k dt; y_{k+1} = y_k + v_{k+1} dt";
+const UNIT_TIME: &str = "t = tau u: position y(t) = y(u), velocity = y'(u) / tau, acceleration \
+     = y''(u) / tau^2; in real time the gains are D_M / tau and K_M / tau^2 and the forcing term \
+     Q f / tau^2";
+
+/// Everything needed besides the primitive and its rollout.
+pub struct DocContext<'a> {
+    /// The demos the primitive came from.
+    pub demos: Vec<String>,
+    /// `demo` or `skill`.
+    pub source: &'static str,
+    /// Basis centres and widths.
+    pub basis: (&'a [f64], &'a [f64]),
+    /// The frame of the positions.
+    pub frame_id: String,
+    /// The skill's per-time position SD, when a skill.
+    pub band: Option<Vec<[f64; 3]>>,
+    /// The scaling mode used.
+    pub scaling: Scaling,
+}
+
+/// The export of `primitive` run at `out`. Fails, naming the field,
+/// when any number is not finite: an export never holds NaN.
+pub fn dmp_document(
+    primitive: &Primitive,
+    out: &Generalised,
+    ctx: DocContext<'_>,
+) -> Result<DmpDocument> {
+    let n = out.t.len();
+    let tau = out.duration_s;
+    let [wx, wy, wz] = primitive.weights.clone();
+    let doc = DmpDocument {
+        schema: SCHEMA,
+        version: VERSION,
+        name: primitive.name.clone(),
+        source: ctx.source,
+        demos: ctx.demos,
+        equations: Equations {
+            transformation_system: TRANSFORMATION,
+            canonical_system: CANONICAL,
+            forcing_term: FORCING,
+            spatial_scaling: match ctx.scaling {
+                Scaling::Paper => SCALING_PAPER,
+                Scaling::Frame => SCALING_FRAME,
+            },
+            integration: INTEGRATION,
+            unit_time: UNIT_TIME,
+        },
+        integration: Integration {
+            scheme: "semi_implicit_euler",
+            points: n,
+            dt: 1.0 / (n.max(2) - 1) as f64,
+        },
+        tau,
+        fitted_duration_s: primitive.duration_s,
+        gains: Gains {
+            unit_time: GainPair {
+                d: primitive.dm,
+                k: primitive.km,
+            },
+            real_time: GainPair {
+                d: primitive.dm / tau,
+                k: primitive.km / (tau * tau),
+            },
+            zeta: crate::model::zeta(primitive.dm, primitive.km),
+        },
+        alpha_x: primitive.alpha_x,
+        basis: BasisDoc {
+            count: ctx.basis.0.len(),
+            in_phase: true,
+            centres: ctx.basis.0.to_vec(),
+            widths: ctx.basis.1.to_vec(),
+        },
+        weights: Weights {
+            x: wx,
+            y: wy,
+            z: wz,
+        },
+        initial_velocity: primitive.v0,
+        y0: primitive.start_abs(),
+        g: primitive.goal_abs(),
+        y0_new: out.start,
+        g_new: out.goal,
+        scaling: ScalingDoc {
+            mode: ctx.scaling.name(),
+            matrix: out.mapping.matrix(),
+        },
+        frame_id: ctx.frame_id,
+        up_axis: "z",
+        units: Units {
+            position: "m",
+            time: "s",
+            velocity: "m/s",
+            acceleration: "m/s^2",
+        },
+        rollout: RolloutDoc {
+            t: out.t.clone(),
+            y: out.unit.y.clone(),
+            v: out.v.clone(),
+            a: out.a.clone(),
+        },
+        rollout_sd: ctx.band,
+    };
+    validate(&doc)?;
+    Ok(doc)
+}
+
+/// Fails on the first non-finite number, naming its field.
+fn validate(doc: &DmpDocument) -> Result<()> {
+    let value = serde_json::to_value(doc)
+        .map_err(|e| Error::InvalidSetting(format!("the export does not serialise: {e}")))?;
+    // serde_json turns non-finite floats into null: any null is one.
+    fn find_null(v: &serde_json::Value, path: &mut String) -> bool {
+        match v {
+            serde_json::Value::Null => true,
+            serde_json::Value::Array(items) => items.iter().enumerate().any(|(i, item)| {
+                let len = path.len();
+                path.push_str(&format!("[{i}]"));
+                let found = find_null(item, path);
+                if !found {
+                    path.truncate(len);
+                }
+                found
+            }),
+            serde_json::Value::Object(map) => map.iter().any(|(k, item)| {
+                let len = path.len();
+                path.push('.');
+                path.push_str(k);
+                let found = find_null(item, path);
+                if !found {
+                    path.truncate(len);
+                }
+                found
+            }),
+            _ => false,
+        }
+    }
+    let mut path = String::new();
+    if find_null(&value, &mut path) {
+        return Err(Error::InvalidSetting(format!(
+            "the export would hold a non-finite number at {}: nothing written (the motion \
+             diverges at these gains and target)",
+            path.trim_start_matches('.')
+        )));
+    }
+    Ok(())
+}
