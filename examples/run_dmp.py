@@ -113,6 +113,14 @@ def load(path):
     return m
 
 
+def norm(a):
+    return math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
 def scaling_map(y0, g, y0_new, g_new, mode):
     """Q of docs/export.md, 'Spatial scaling'."""
     d, d_new = g - y0, g_new - y0_new
@@ -122,24 +130,28 @@ def scaling_map(y0, g, y0_new, g_new, mode):
         with np.errstate(divide="ignore", invalid="ignore"):
             m = np.where(np.abs(d) < 1e-9, 1.0, d_new / d)
         return np.diag(m)
-    nd, nd_new = math.sqrt(d @ d), math.sqrt(d_new @ d_new)
+    # Plain floats in the page's order of operations: near-opposite goals make
+    # Q sensitive to the last bit of e and e'.
+    d, d_new = [float(c) for c in d], [float(c) for c in d_new]
+    nd, nd_new = norm(d), norm(d_new)
     if nd == 0.0 or nd_new == 0.0:
         raise Invalid("frame scaling is not defined by docs/export.md when |d| or |d'| is 0")
-    e, e_new = d / nd, d_new / nd_new
-    k = np.cross(e, e_new)
-    sin, cos = math.sqrt(k @ k), float(e @ e_new)
+    e, e_new = [c / nd for c in d], [c / nd_new for c in d_new]
+    k = cross(e, e_new)
+    sin, cos = norm(k), e[0] * e_new[0] + e[1] * e_new[1] + e[2] * e_new[2]
     if sin < 1e-15 and cos > 0:
         return (nd_new / nd) * np.eye(3)
-    if sin < 1e-15:  # opposite: half a turn about an axis normal to e
-        c = np.zeros(3)
-        c[int(np.argmin(np.abs(e)))] = 1.0
-        k = np.cross(e, c)
-        k = k / math.sqrt(k @ k)
-        theta = math.pi
+    if sin < 1e-6 and cos <= 0:  # opposite: half a turn about an axis normal to e
+        c = [0.0, 0.0, 0.0]
+        c[min(range(3), key=lambda i: abs(e[i]))] = 1.0  # first smallest |e_i|
+        k = cross(e, c)
+        nk = norm(k)
+        k = [kc / nk for kc in k]
+        s, v = 0.0, 2.0  # theta = pi exactly
     else:
-        k = k / sin
+        k = [kc / sin for kc in k]
         theta = math.atan2(sin, cos)
-    s, v = math.sin(theta), 1.0 - math.cos(theta)
+        s, v = math.sin(theta), 1.0 - math.cos(theta)
     kx, ky, kz = k
     rot = np.array([
         [1 - v * (ky * ky + kz * kz), v * kx * ky - s * kz, v * kx * kz + s * ky],

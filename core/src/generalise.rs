@@ -133,18 +133,20 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 /// The smallest rotation taking unit vector `a` to unit vector `b`
-/// (Rodrigues), `None` when they are parallel (the identity). Opposite
-/// vectors turn by pi about an axis perpendicular to `a`.
+/// (Rodrigues), `None` when they are parallel (the identity). Vectors
+/// within 1e-6 of opposite turn by exactly pi about an axis perpendicular
+/// to `a`: near there the smallest rotation's axis depends on the last bits
+/// of the inputs, so two implementations would not agree.
 fn smallest_rotation(a: [f64; 3], b: [f64; 3]) -> Option<[[f64; 3]; 3]> {
     let c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let axis = cross(a, b);
     let sin = norm(axis);
-    if sin < 1e-15 && c > 0.0 {
+    if sin < PARALLEL_SIN && c > 0.0 {
         return None;
     }
-    let k = if sin < 1e-15 {
+    let (k, s, v) = if sin < OPPOSITE_SIN && c <= 0.0 {
         // Opposite: any axis perpendicular to `a`; take the cross product
-        // with the coordinate axis least aligned with it.
+        // with the (first) coordinate axis least aligned with it.
         let least = (0..3)
             .min_by(|&i, &j| a[i].abs().total_cmp(&a[j].abs()))
             .unwrap_or(0);
@@ -152,12 +154,11 @@ fn smallest_rotation(a: [f64; 3], b: [f64; 3]) -> Option<[[f64; 3]; 3]> {
         e[least] = 1.0;
         let p = cross(a, e);
         let lp = norm(p);
-        p.map(|v| v / lp)
+        (p.map(|v| v / lp), 0.0, 2.0)
     } else {
-        axis.map(|v| v / sin)
+        let angle = sin.atan2(c);
+        (axis.map(|v| v / sin), angle.sin(), 1.0 - angle.cos())
     };
-    let angle = sin.atan2(c);
-    let (s, v) = (angle.sin(), 1.0 - angle.cos());
     Some([
         [
             1.0 - v * (k[1] * k[1] + k[2] * k[2]),
@@ -176,6 +177,11 @@ fn smallest_rotation(a: [f64; 3], b: [f64; 3]) -> Option<[[f64; 3]; 3]> {
         ],
     ])
 }
+
+/// Below this `|a x b|` with `a . b > 0`, the directions are the same.
+const PARALLEL_SIN: f64 = 1e-15;
+/// Below this `|a x b|` with `a . b <= 0`, the directions are opposite.
+const OPPOSITE_SIN: f64 = 1e-6;
 
 /// A forcing term at one gain pair with the motion it was fitted to.
 #[derive(Clone, Debug, PartialEq)]
@@ -347,13 +353,7 @@ impl Primitive {
     /// The diagonal of the bounding box of the start, the goal and the
     /// path at its own target: the motion's extent, metres.
     fn extent(&self) -> f64 {
-        let path = self.integrate(
-            self.y0,
-            self.goal,
-            &Mapping::IDENTITY,
-            &self.fdt2,
-            self.v0,
-        );
+        let path = self.integrate(self.y0, self.goal, &Mapping::IDENTITY, &self.fdt2, self.v0);
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
         for p in path.iter().chain([&self.goal]) {
@@ -473,7 +473,11 @@ impl Primitive {
     ) -> Vec<[f64; 3]> {
         let m = self.members.len();
         if m < 2 {
-            return if m == 1 { vec![[0.0; 3]; mean.len()] } else { Vec::new() };
+            return if m == 1 {
+                vec![[0.0; 3]; mean.len()]
+            } else {
+                Vec::new()
+            };
         }
         let mut sum2 = vec![[0.0; 3]; mean.len()];
         for (fdt2, v0) in &self.members {
@@ -596,12 +600,20 @@ mod tests {
             }
         }
         assert!(smallest_rotation(a, a).is_none());
+        // Within 1e-6 rad of opposite: exactly the pi turn, whatever the
+        // last bits.
+        let near = [-1.0, 1e-8, 0.0];
+        let len = norm(near);
+        let r = smallest_rotation(a, near.map(|v| v / len)).expect("opposite");
+        let exact = smallest_rotation(a, [-1.0, 0.0, 0.0]).expect("opposite");
+        assert_eq!(r, exact);
+        assert_eq!(Mapping::Matrix(r).apply(a), [-1.0, 0.0, 0.0]);
     }
 
     #[test]
     fn per_axis_factors_leave_a_still_axis_alone() {
-        let m = Mapping::between([0.2, 0.0, 1e-12], [0.4, 0.3, 0.1], Scaling::Paper)
-            .expect("paper");
+        let m =
+            Mapping::between([0.2, 0.0, 1e-12], [0.4, 0.3, 0.1], Scaling::Paper).expect("paper");
         assert_eq!(m, Mapping::Diagonal([2.0, 1.0, 1.0]));
         assert!(Mapping::between([0.0; 3], [0.1, 0.0, 0.0], Scaling::Frame).is_err());
     }

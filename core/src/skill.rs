@@ -66,11 +66,10 @@ impl Skill {
             .iter()
             .map(|p| {
                 let own = std::array::from_fn(|a| p.goal[a] - p.y0[a]);
-                Mapping::between(own, displacement, scaling)
-                    .map_err(|e| match e {
-                        Error::InvalidSetting(m) => Error::InvalidSetting(format!("{}: {m}", p.name)),
-                        other => other,
-                    })
+                Mapping::between(own, displacement, scaling).map_err(|e| match e {
+                    Error::InvalidSetting(m) => Error::InvalidSetting(format!("{}: {m}", p.name)),
+                    other => other,
+                })
             })
             .collect::<Result<_>>()?;
         let n = parts[0].len();

@@ -197,8 +197,13 @@ fn bad_targets_name_the_argument() {
         ..Target::default()
     });
     assert!(e.contains("--goal"), "{e}");
-    let e = Primitive::of_demo(&m, 7, DM, KM).expect_err("range").to_string();
-    assert!(e.contains("--demo 8 is out of range: there are 3 demos"), "{e}");
+    let e = Primitive::of_demo(&m, 7, DM, KM)
+        .expect_err("range")
+        .to_string();
+    assert!(
+        e.contains("--demo 8 is out of range: there are 3 demos"),
+        "{e}"
+    );
     assert!(Primitive::of_demo(&m, 0, f64::NAN, KM).is_err());
 }
 
@@ -220,9 +225,14 @@ fn reach(delta: [f64; 3]) -> Model {
         positions: samples.iter().map(|s| s.1).collect(),
         time_source: TimeSource::HeaderStamp,
     };
-    build_model([&raw], &PrepSettings::default(), DmpSettings::default(), Unusable::Fail)
-        .expect("model")
-        .model
+    build_model(
+        [&raw],
+        &PrepSettings::default(),
+        DmpSettings::default(),
+        Unusable::Fail,
+    )
+    .expect("model")
+    .model
 }
 
 #[test]

@@ -18,7 +18,8 @@ import numpy as np
 import method as m
 
 SMALL_AXIS = 1e-9          # |d_a| below this: per-axis factor left at 1; |d| below: frame refused
-PARALLEL_SIN = 1e-15       # sin below this: parallel (identity) or opposite (pi turn)
+PARALLEL_SIN = 1e-15       # sin below this with cos > 0: parallel (identity)
+OPPOSITE_SIN = 1e-6        # sin below this with cos <= 0: opposite (pi turn)
 
 
 # ---- the map Q -------------------------------------------------------------
@@ -47,9 +48,9 @@ def smallest_rotation(e, ep):
     k = _cross(e, ep)
     sin = _norm(k)
     cos = float(e @ ep)
-    if sin < PARALLEL_SIN:
-        if cos > 0:
-            return np.eye(3)
+    if sin < PARALLEL_SIN and cos > 0:
+        return np.eye(3)
+    if sin < OPPOSITE_SIN and cos <= 0:
         # opposite: pi about e x c / |e x c|, c the axis of |e|'s smallest component (first)
         c = np.zeros(3)
         c[int(np.argmin(np.abs(e)))] = 1.0

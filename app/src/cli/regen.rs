@@ -176,7 +176,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("wrote the DMP of {} to {}", r.primitive.name, out.display());
             Ok(())
         }
-        _ => write_text(Some(out), &csv(&model, &runs)),
+        _ => write_text(Some(out), &csv(&model, &runs, own_target(&args))),
     }
 }
 
@@ -203,7 +203,13 @@ fn make_runs(model: &Model, args: &Args, target: &Target) -> anyhow::Result<Vec<
     };
     which
         .into_iter()
-        .map(|i| run_of(Primitive::of_demo(model, i, args.dm, args.km)?, Some(i), None))
+        .map(|i| {
+            run_of(
+                Primitive::of_demo(model, i, args.dm, args.km)?,
+                Some(i),
+                None,
+            )
+        })
         .collect()
 }
 
@@ -227,7 +233,13 @@ fn summary(model: &Model, args: &Args, runs: &[Run]) -> String {
     let _ = writeln!(
         s,
         "{:<w$}  {:>11}  {:>14}  {:>7}  {:>10}  {:>15}  {:>9}",
-        "path", "d_mean [mm]", "a_peak [m/s^2]", "T' [s]", "v_max [m/s]", "a_max [m/s^2]", "end [mm]"
+        "path",
+        "d_mean [mm]",
+        "a_peak [m/s^2]",
+        "T' [s]",
+        "v_max [m/s]",
+        "a_max [m/s^2]",
+        "end [mm]"
     );
     for r in runs {
         let d = match (r.demo, own_target(args)) {
@@ -258,12 +270,13 @@ fn summary(model: &Model, args: &Args, runs: &[Run]) -> String {
     s
 }
 
-fn csv(model: &Model, runs: &[Run]) -> String {
-    let mut csv = String::from(
-        "demo,s,t_s,x,y,z,demo_x,demo_y,demo_z,vx,vy,vz,ax,ay,az,sd_x,sd_y,sd_z\n",
-    );
+/// The paths as CSV; the demo's own samples beside a path only when it
+/// runs at the demo's own target.
+fn csv(model: &Model, runs: &[Run], own: bool) -> String {
+    let mut csv =
+        String::from("demo,s,t_s,x,y,z,demo_x,demo_y,demo_z,vx,vy,vz,ax,ay,az,sd_x,sd_y,sd_z\n");
     for r in runs {
-        let demo = r.demo.map(|i| &model.demos()[i]);
+        let demo = r.demo.filter(|_| own).map(|i| &model.demos()[i]);
         let n = r.out.t.len();
         for k in 0..n {
             let s = k as f64 / (n - 1) as f64;
@@ -272,12 +285,7 @@ fn csv(model: &Model, runs: &[Run]) -> String {
             let target = match demo {
                 Some(d) if k < d.y_raw.len() => {
                     let q = d.y_raw[k];
-                    format!(
-                        "{},{},{}",
-                        q[0] + d.p0[0],
-                        q[1] + d.p0[1],
-                        q[2] + d.p0[2]
-                    )
+                    format!("{},{},{}", q[0] + d.p0[0], q[1] + d.p0[1], q[2] + d.p0[2])
                 }
                 _ => ",,".to_owned(),
             };

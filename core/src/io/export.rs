@@ -194,12 +194,8 @@ pub fn write_export_mcap<W: Write + Seek>(
             };
             let ch = writer.add_channel(path_schema, &format!("{prefix}/path"), "cdr", &meta)?;
             writer.write_to_known_channel(&header(ch), &encode_path(traj))?;
-            let ch = writer.add_channel(
-                dof_schema,
-                &format!("{prefix}/trajectory"),
-                "cdr",
-                &meta,
-            )?;
+            let ch =
+                writer.add_channel(dof_schema, &format!("{prefix}/trajectory"), "cdr", &meta)?;
             writer.write_to_known_channel(&header(ch), &encode_multi_dof(traj))?;
         }
     }

@@ -12,7 +12,8 @@ pub const PATH_NAME: &str = "nav_msgs/msg/Path";
 /// MCAP schema name of the trajectory message.
 pub const MULTI_DOF_NAME: &str = "trajectory_msgs/msg/MultiDOFJointTrajectory";
 
-const SEP: &str = "================================================================================\n";
+const SEP: &str =
+    "================================================================================\n";
 
 /// The `ros2msg` schema text of `nav_msgs/msg/Path`.
 pub fn path_schema() -> String {
@@ -168,9 +169,12 @@ fn read_len(r: &mut CdrReader<'_>, what: &str, left: usize) -> Result<usize, Str
     Ok(n)
 }
 
-/// Decodes [`encode_path`]: the stamp, frame and `(stamp_ns, position)`
-/// of each pose.
-pub fn decode_path(message: &[u8]) -> Result<(i64, String, Vec<(i64, [f64; 3])>), String> {
+/// A decoded `nav_msgs/msg/Path`: its stamp, frame and
+/// `(stamp_ns, position)` per pose.
+pub type DecodedPath = (i64, String, Vec<(i64, [f64; 3])>);
+
+/// Decodes [`encode_path`].
+pub fn decode_path(message: &[u8]) -> Result<DecodedPath, String> {
     let mut r = CdrReader::new(message)?;
     let (stamp, frame) = read_header(&mut r)?;
     let n = read_len(&mut r, "poses", message.len())?;

@@ -1,0 +1,328 @@
+//! The gains taken to a robot, at the process boundary: `regen` at a new
+//! start, goal and duration, the `dmpscope.dmp` JSON export run by the
+//! reference runner `examples/run_dmp.py` and checked against its JSON
+//! Schema, the ROS 2 trajectories in the MCAP export decoded back, and bad
+//! targets refused by name.
+
+mod support;
+
+use std::process::Command;
+
+use dmpscope_core::io::ros_traj::{MULTI_DOF_NAME, PATH_NAME, decode_multi_dof, decode_path};
+use serde_json::Value;
+use support::{dmpscope, repo, text};
+
+fn tmp(name: &str) -> String {
+    support::tmp_path(name).display().to_string()
+}
+
+fn sample() -> String {
+    support::sample_path().display().to_string()
+}
+
+#[track_caller]
+fn ok(args: &[&str]) -> String {
+    let out = dmpscope(args);
+    assert!(
+        out.status.success(),
+        "dmpscope {args:?} failed: {}",
+        text(&out.stderr)
+    );
+    text(&out.stdout)
+}
+
+const GAINS: [&str; 4] = ["--dm", "25", "--km", "156.25"];
+
+fn regen(extra: &[&str]) -> Vec<String> {
+    let mut args: Vec<String> = vec!["regen".into(), sample()];
+    args.extend(GAINS.iter().map(|s| s.to_string()));
+    args.extend(extra.iter().map(|s| s.to_string()));
+    args
+}
+
+fn run(args: &[String]) -> String {
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    ok(&refs)
+}
+
+fn json(path: &str) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).expect("export")).expect("valid JSON")
+}
+
+fn triple(v: &Value) -> [f64; 3] {
+    std::array::from_fn(|i| v[i].as_f64().expect("number"))
+}
+
+/// The Python that runs the reference runner: `DMPSCOPE_PYTHON`, else
+/// `python3`. `None` (the test then says it did not run) only outside CI:
+/// under CI a missing NumPy is a failure.
+fn python_with(modules: &str) -> Option<String> {
+    let python = std::env::var("DMPSCOPE_PYTHON").unwrap_or_else(|_| "python3".into());
+    let works = Command::new(&python)
+        .args(["-c", &format!("import {modules}")])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if works {
+        return Some(python);
+    }
+    assert!(
+        std::env::var_os("CI").is_none(),
+        "CI needs {python} with {modules} (apt: python3-numpy python3-jsonschema)"
+    );
+    eprintln!("NOT RUN here: {python} lacks {modules}");
+    None
+}
+
+#[test]
+fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
+    let demo = tmp("demo.json");
+    let skill = tmp("skill.json");
+    run(&regen(&[
+        "--demo",
+        "1",
+        "--start",
+        "0.30",
+        "-0.25",
+        "0.95",
+        "--goal",
+        "0.45",
+        "0.3",
+        "0.9",
+        "--duration",
+        "2",
+        "--out",
+        &demo,
+    ]));
+    run(&regen(&[
+        "--skill",
+        "--scaling",
+        "frame",
+        "--goal",
+        "0.2",
+        "0.3",
+        "1.1",
+        "--out",
+        &skill,
+    ]));
+    let doc = json(&demo);
+    assert_eq!(doc["schema"], "dmpscope.dmp");
+    assert_eq!(doc["version"], 1);
+    assert_eq!(doc["source"], "demo");
+    assert_eq!(doc["tau"].as_f64(), Some(2.0));
+    assert_eq!(doc["gains"]["real_time"]["d"].as_f64(), Some(12.5));
+    assert_eq!(doc["gains"]["real_time"]["k"].as_f64(), Some(156.25 / 4.0));
+    assert_eq!(triple(&doc["y0_new"]), [0.30, -0.25, 0.95]);
+    assert_eq!(triple(&doc["g_new"]), [0.45, 0.3, 0.9]);
+    let y = doc["rollout"]["y"].as_array().expect("y");
+    assert_eq!(y.len(), 1001);
+    // Exactly at the new start.
+    assert_eq!(triple(&y[0]), [0.30, -0.25, 0.95]);
+    let t = doc["rollout"]["t"].as_array().expect("t");
+    assert_eq!(t[0].as_f64(), Some(0.0));
+    assert!((t[1000].as_f64().expect("t") - 2.0).abs() < 1e-12);
+    let sk = json(&skill);
+    assert_eq!(sk["source"], "skill");
+    assert_eq!(sk["demos"].as_array().expect("demos").len(), 10);
+    assert_eq!(sk["scaling"]["mode"], "frame");
+    assert_eq!(sk["rollout_sd"].as_array().expect("band").len(), 1001);
+
+    let Some(python) = python_with("numpy") else {
+        return;
+    };
+    let runner = repo().join("examples/run_dmp.py");
+    let out = Command::new(&python)
+        .arg(&runner)
+        .args([&demo, &skill])
+        .output()
+        .expect("run the runner");
+    assert!(
+        out.status.success(),
+        "run_dmp.py: {}{}",
+        text(&out.stdout),
+        text(&out.stderr)
+    );
+    assert_eq!(
+        text(&out.stdout).matches(" ok").count(),
+        2,
+        "{}",
+        text(&out.stdout)
+    );
+    // A runner that cannot tell a wrong rollout from a right one is no
+    // check: a perturbed golden value must fail it.
+    let mut bad = doc.clone();
+    let v = bad["rollout"]["y"][500][1].as_f64().expect("y");
+    bad["rollout"]["y"][500][1] = Value::from(v + 1e-6);
+    let bad_path = tmp("perturbed.json");
+    std::fs::write(&bad_path, bad.to_string()).expect("write");
+    let out = Command::new(&python)
+        .arg(&runner)
+        .arg(&bad_path)
+        .output()
+        .expect("run the runner");
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stdout));
+
+    let Some(python) = python_with("jsonschema") else {
+        return;
+    };
+    let schema = repo().join("docs/dmpscope.dmp.schema.json");
+    let check = "import json, sys, jsonschema\n\
+         s = json.load(open(sys.argv[1]))\n\
+         for f in sys.argv[2:]: jsonschema.validate(json.load(open(f)), s)\n";
+    let out = Command::new(&python)
+        .args(["-c", check])
+        .arg(&schema)
+        .args([&demo, &skill])
+        .output()
+        .expect("validate");
+    assert!(out.status.success(), "schema: {}", text(&out.stderr));
+}
+
+#[test]
+fn bad_targets_are_refused_naming_the_argument_and_nothing_is_written() {
+    let out_path = tmp("never.json");
+    let cases: [(&[&str], &str); 7] = [
+        (
+            &[
+                "--demo", "1", "--start", "0.3", "0.2", "1", "--goal", "0.3", "0.2", "1",
+            ],
+            "--goal equals --start",
+        ),
+        (&["--demo", "1", "--duration", "0"], "--duration"),
+        (&["--demo", "1", "--duration", "-2"], "--duration"),
+        (&["--demo", "1", "--duration", "nan"], "--duration"),
+        (&["--demo", "0"], "--demo must be between 1 and 10"),
+        (&["--demo", "11"], "--demo must be between 1 and 10, got 11"),
+        (&[], "pass --demo N (1-based) or --skill"),
+    ];
+    for (extra, message) in cases {
+        let mut args = regen(extra);
+        args.extend(["--out".to_owned(), out_path.clone()]);
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = dmpscope(&refs);
+        assert!(!out.status.success(), "{extra:?} was accepted");
+        let err = text(&out.stderr);
+        assert!(err.contains(message), "{extra:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(!std::path::Path::new(&out_path).exists());
+    }
+}
+
+#[test]
+fn the_mcap_export_holds_ros_trajectories_that_decode_back() {
+    let mcap_path = tmp("robot.mcap");
+    let json_path = tmp("robot.json");
+    let target = [
+        "--demo",
+        "3",
+        "--goal",
+        "0.5",
+        "0.1",
+        "1.2",
+        "--duration",
+        "1.5",
+    ];
+    let mut args = regen(&target);
+    args.extend(["--out".into(), mcap_path.clone()]);
+    run(&args);
+    let mut args = regen(&target);
+    args.extend(["--out".into(), json_path.clone()]);
+    run(&args);
+    let doc = json(&json_path);
+    let rows = |key: &str| -> Vec<[f64; 3]> {
+        doc["rollout"][key]
+            .as_array()
+            .expect("rows")
+            .iter()
+            .map(triple)
+            .collect()
+    };
+    let (y, v, a) = (rows("y"), rows("v"), rows("a"));
+    let t: Vec<f64> = doc["rollout"]["t"]
+        .as_array()
+        .expect("t")
+        .iter()
+        .map(|v| v.as_f64().expect("t"))
+        .collect();
+
+    let bytes = std::fs::read(&mcap_path).expect("mcap");
+    let mut seen = Vec::new();
+    for message in mcap::MessageStream::new(&bytes).expect("mcap") {
+        let message = message.expect("message");
+        let schema = message.channel.schema.as_ref().expect("schema");
+        let topic = message.channel.topic.clone();
+        match schema.name.as_str() {
+            PATH_NAME => {
+                assert_eq!(topic, "/dmp/reach10_demo_03/path");
+                assert_eq!(message.channel.message_encoding, "cdr");
+                assert_eq!(schema.encoding, "ros2msg");
+                let (stamp, frame, poses) = decode_path(&message.data).expect("Path");
+                assert_eq!(frame, "world");
+                assert_eq!(poses.len(), 1001);
+                for (k, (s, p)) in poses.iter().enumerate() {
+                    assert_eq!(*p, y[k], "pose {k}");
+                    assert_eq!(*s, stamp + (t[k] * 1e9).round() as i64);
+                }
+                seen.push(topic);
+            }
+            MULTI_DOF_NAME => {
+                assert_eq!(topic, "/dmp/reach10_demo_03/trajectory");
+                let traj = decode_multi_dof(&message.data).expect("trajectory");
+                assert_eq!(traj.joint, "end_effector");
+                assert_eq!(
+                    (traj.y.len(), traj.v.len(), traj.a.len()),
+                    (1001, 1001, 1001)
+                );
+                assert_eq!(
+                    (traj.y.clone(), traj.v.clone(), traj.a.clone()),
+                    (y.clone(), v.clone(), a.clone())
+                );
+                for (k, tk) in traj.t.iter().enumerate() {
+                    assert!((tk - t[k]).abs() <= 1e-9, "time_from_start {k}");
+                }
+                seen.push(topic);
+            }
+            _ => {}
+        }
+    }
+    assert_eq!(seen.len(), 2, "{seen:?}");
+    // Loading the export gives back the ten demos and says what it skipped.
+    let out = dmpscope(&["info", &mcap_path]);
+    assert!(out.status.success());
+    let said = format!("{}{}", text(&out.stdout), text(&out.stderr));
+    assert!(said.contains("10 demonstrations"), "{said}");
+    assert!(text(&out.stderr).contains("a trajectory dmpscope exported"));
+}
+
+#[test]
+fn the_csv_of_a_generalised_path_is_in_real_time() {
+    let csv = tmp("moved.csv");
+    let summary = run(&regen(&[
+        "--demo",
+        "2",
+        "--start",
+        "0.1",
+        "0.2",
+        "0.3",
+        "--goal",
+        "0.4",
+        "0.6",
+        "0.1",
+        "--duration",
+        "4",
+        "--scaling",
+        "frame",
+        "--out",
+        &csv,
+    ]));
+    assert!(summary.contains("v_max [m/s]"), "{summary}");
+    let body = std::fs::read_to_string(&csv).expect("csv");
+    let lines: Vec<&str> = body.lines().collect();
+    assert_eq!(lines.len(), 1 + 1001);
+    assert!(lines[0].starts_with("demo,s,t_s,x,y,z,demo_x,demo_y,demo_z,vx,vy,vz,ax,ay,az"));
+    let first: Vec<&str> = lines[1].split(',').collect();
+    assert_eq!(&first[3..6], ["0.1", "0.2", "0.3"]);
+    // Moved paths have no demo to compare with.
+    assert_eq!(&first[6..9], ["", "", ""]);
+    let last: Vec<&str> = lines[1001].split(',').collect();
+    assert!((last[2].parse::<f64>().expect("t") - 4.0).abs() < 1e-12);
+}
