@@ -185,7 +185,7 @@ fn bad_targets_are_refused_naming_the_argument_and_nothing_is_written() {
             &[
                 "--demo", "1", "--start", "0.3", "0.2", "1", "--goal", "0.3", "0.2", "1",
             ],
-            "--goal equals --start",
+            "the goal (--goal) equals the start (--start)",
         ),
         (&["--demo", "1", "--duration", "0"], "--duration"),
         (&["--demo", "1", "--duration", "-2"], "--duration"),

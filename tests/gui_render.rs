@@ -165,3 +165,112 @@ fn the_diagnostics_forcing_terms_and_trade_off_match_their_baselines() {
     h.run_steps(3);
     h.snapshot("window_planted_tradeoff");
 }
+
+/// Drags the primary button from `from` to `to` in five moves, holding
+/// `modifiers`.
+fn drag(h: &mut Harness<'_, DmpApp>, from: egui::Pos2, to: egui::Pos2, modifiers: egui::Modifiers) {
+    h.input_mut()
+        .events
+        .push(egui::Event::ModifiersChanged(modifiers));
+    h.input_mut().events.push(egui::Event::PointerMoved(from));
+    h.step();
+    h.input_mut().events.push(egui::Event::PointerButton {
+        pos: from,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers,
+    });
+    h.step();
+    for i in 1..=5 {
+        let p = from + (to - from) * (i as f32 / 5.0);
+        h.input_mut().events.push(egui::Event::PointerMoved(p));
+        h.step();
+    }
+    h.input_mut().events.push(egui::Event::PointerButton {
+        pos: to,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers,
+    });
+    h.step();
+    h.input_mut()
+        .events
+        .push(egui::Event::ModifiersChanged(egui::Modifiers::NONE));
+    h.run_steps(2);
+}
+
+#[test]
+fn the_goal_and_start_of_a_new_target_drag_in_the_3d_view() {
+    if !have_lavapipe() {
+        return;
+    }
+    let mut h = harness();
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "New target")
+        .click();
+    h.run_steps(2);
+    h.get_by_label("Run the DMP at a new target").click();
+    h.run_steps(4);
+    let own = {
+        let g = h
+            .state()
+            .session()
+            .generalised()
+            .expect("on")
+            .expect("runs");
+        assert_eq!(g.out.warnings, Vec::<String>::new());
+        (g.out.start, g.out.goal)
+    };
+    h.snapshot("window_new_target");
+    let [start, goal] = h
+        .state()
+        .view()
+        .view3d
+        .handles_on_screen()
+        .expect("handles drawn");
+    // The goal moves on the horizontal plane through it.
+    drag(
+        &mut h,
+        goal,
+        goal + egui::vec2(-90.0, 25.0),
+        egui::Modifiers::NONE,
+    );
+    let spec = *h.state().session().generalise_spec().expect("on");
+    let moved = spec.target.goal.expect("the drag set a goal");
+    let shift = ((moved[0] - own.1[0]).powi(2) + (moved[1] - own.1[1]).powi(2)).sqrt();
+    assert!(
+        shift > 0.02,
+        "the goal moved {shift} m: {moved:?} from {:?}",
+        own.1
+    );
+    assert!((moved[2] - own.1[2]).abs() < 1e-5, "at the same height");
+    let g = h
+        .state()
+        .session()
+        .generalised()
+        .expect("on")
+        .expect("runs");
+    assert_eq!(g.out.goal, moved);
+    assert!(
+        g.out.final_error < 0.05,
+        "the path follows: {}",
+        g.out.final_error
+    );
+    // With Shift the start moves up only.
+    drag(
+        &mut h,
+        start,
+        start + egui::vec2(0.0, -40.0),
+        egui::Modifiers::SHIFT,
+    );
+    let spec = *h.state().session().generalise_spec().expect("on");
+    let up = spec.target.start.expect("the drag set a start");
+    assert!(up[2] - own.0[2] > 0.01, "up by {}", up[2] - own.0[2]);
+    assert!((up[0] - own.0[0]).abs() < 1e-5 && (up[1] - own.0[1]).abs() < 1e-5);
+    h.snapshot("window_new_target_moved");
+    // Reset returns to the demo.
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "Reset")
+        .click();
+    h.run_steps(2);
+    let spec = *h.state().session().generalise_spec().expect("on");
+    assert_eq!((spec.target.start, spec.target.goal), (None, None));
+}

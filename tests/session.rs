@@ -402,3 +402,81 @@ fn one_demo_says_what_the_diagnostics_need_and_the_rest_works() {
     );
     assert!(d.diagnostics.bootstrap.is_some());
 }
+
+#[test]
+fn a_new_target_recomputes_only_the_generalised_run() {
+    use dmpscope::session::{GenSource, GeneraliseSpec};
+    use dmpscope_core::Scaling;
+    let mut settings = Settings::with_grid_points(8);
+    let mut session = session_on(vec![Source::sample()], &settings);
+    let step = |session: &mut Session, settings: &Settings| {
+        let before = session.runs();
+        session.update(settings);
+        let after = session.runs();
+        (after.generalised - before.generalised, delta(before, after))
+    };
+    assert!(session.generalised().is_none(), "off until asked for");
+    let mut spec = GeneraliseSpec::demo(2);
+    session.apply(Command::SetGeneralise(Some(spec)));
+    assert_eq!(step(&mut session, &settings), (1, [0; 8]));
+    {
+        // At its own target: the operating point's path, to the bit.
+        let model = session.model().expect("model").clone();
+        let g = session.generalised().expect("on").expect("runs");
+        let own = &session.paths()[2];
+        let p0 = model.demos()[2].p0;
+        for (a, b) in g.out.unit.y.iter().zip(&own.y) {
+            assert_eq!(*a, std::array::from_fn(|c| b[c] + p0[c]));
+        }
+    }
+    assert_eq!(
+        step(&mut session, &settings),
+        (0, [0; 8]),
+        "nothing changed"
+    );
+    // A dragged goal: the run only, every frame.
+    let goal = session.generalised().expect("on").expect("runs").out.goal;
+    spec.target.goal = Some([goal[0] - 0.1, goal[1], goal[2]]);
+    session.apply(Command::SetGeneralise(Some(spec)));
+    assert_eq!(step(&mut session, &settings), (1, [0; 8]), "a new goal");
+    let g = session.generalised().expect("on").expect("runs");
+    assert_eq!(g.out.goal, [goal[0] - 0.1, goal[1], goal[2]]);
+    // New gains: the point and the run.
+    settings.op = (12.0, 34.0);
+    assert_eq!(
+        step(&mut session, &settings),
+        (1, [0, 0, 0, 0, 0, 0, 0, 1]),
+        "the operating point"
+    );
+    // A goal on the start is refused in words, not NaN.
+    let start = session.generalised().expect("on").expect("runs").out.start;
+    spec.target.goal = Some(start);
+    session.apply(Command::SetGeneralise(Some(spec)));
+    step(&mut session, &settings);
+    let err = session.generalised().expect("on").expect_err("refused");
+    assert!(err.contains("equals the start"), "{err}");
+    // The skill of all demos, frame-independent, with its band.
+    spec = GeneraliseSpec {
+        source: GenSource::Skill,
+        ..spec.reset()
+    };
+    spec.target.scaling = Scaling::Frame;
+    session.apply(Command::SetGeneralise(Some(spec)));
+    step(&mut session, &settings);
+    let g = session.generalised().expect("on").expect("runs");
+    assert_eq!(g.out.band.len(), 1001);
+    assert_eq!(g.forcing_sd.as_ref().map(Vec::len), Some(1001));
+    assert!(g.primitive.name.contains("10 demos"));
+    // A new model keeps the target and runs it again.
+    session.apply(Command::SetIncluded {
+        demo: 0,
+        included: false,
+    });
+    let (runs, _) = step(&mut session, &settings);
+    assert_eq!(runs, 1);
+    let g = session.generalised().expect("on").expect("runs");
+    assert!(g.primitive.name.contains("9 demos"));
+    session.apply(Command::SetGeneralise(None));
+    step(&mut session, &settings);
+    assert!(session.generalised().is_none());
+}

@@ -375,18 +375,20 @@ impl Primitive {
         for (what, v) in [("--start", start), ("--goal", goal)] {
             if v.iter().any(|c| !c.is_finite()) {
                 return Err(Error::InvalidSetting(format!(
-                    "{what} must be three finite numbers, got {v:?}"
+                    "the {} ({what}) must be three finite numbers, got {v:?}",
+                    what.trim_start_matches('-')
                 )));
             }
         }
         if !(duration.is_finite() && duration > 0.0) {
             return Err(Error::InvalidSetting(format!(
-                "--duration must be a positive number of seconds, got {duration}"
+                "the duration (--duration) must be a positive number of seconds, got {duration}"
             )));
         }
         if start == goal {
             return Err(Error::InvalidSetting(format!(
-                "--goal equals --start ({start:?}): a point-to-point motion needs them apart"
+                "the goal (--goal) equals the start (--start), {start:?}: a point-to-point \
+                 motion needs them apart"
             )));
         }
         // Relative coordinates: the defaults keep the primitive's own bits.

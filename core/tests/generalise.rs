@@ -184,7 +184,10 @@ fn bad_targets_name_the_argument() {
         goal: Some(s),
         ..Target::default()
     });
-    assert!(e.contains("--goal equals --start"), "{e}");
+    assert!(
+        e.contains("the goal (--goal) equals the start (--start)"),
+        "{e}"
+    );
     for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         let e = err(Target {
             duration_s: Some(bad),

@@ -88,6 +88,12 @@ impl DmpApp {
         self
     }
 
+    /// What the views remember (tests read it: the selection, where the 3D
+    /// view drew its handles).
+    pub fn view(&self) -> &ViewState {
+        &self.view
+    }
+
     /// The session (read only: change it through [`DmpApp::apply`] or the
     /// settings).
     pub fn session(&self) -> &Session {

@@ -41,6 +41,8 @@ pub enum RightTab {
     Forcing,
     /// The Pareto front of (sum d, S).
     TradeOff,
+    /// The demo or skill run at a new start, goal and duration.
+    Generalised,
 }
 
 /// The views' state.

@@ -41,6 +41,9 @@ pub enum Command {
     StartRl(RlRequest),
     /// Stop the RL training (the last policy stays).
     CancelRl,
+    /// Run the selected demo or the skill at a new start, goal and
+    /// duration (`None`: stop).
+    SetGeneralise(Option<super::GeneraliseSpec>),
     /// Forget every message.
     ClearMessages,
     /// Tell the user something (a dialog's answer, an export written).

@@ -28,6 +28,7 @@
 
 mod commands;
 pub mod diagnostics;
+pub mod generalise;
 pub mod jobs;
 pub mod landscape;
 pub mod messages;
@@ -49,6 +50,7 @@ use dmpscope_core::{
 
 pub use commands::Command;
 pub use diagnostics::DiagSnapshot;
+pub use generalise::{GenSource, GenView, GeneraliseSpec};
 pub use jobs::{PageTime, Runner};
 pub use landscape::{Shown, Snapshot};
 pub use rl::{Progress as RlProgress, RlRequest};
@@ -97,6 +99,8 @@ pub struct StageRuns {
     /// Operating points evaluated, with every demo's path (once per model
     /// and point).
     pub points: usize,
+    /// Generalised runs computed (once per model, point and target).
+    pub generalised: usize,
 }
 
 /// The app's state (see the module's documentation).
@@ -118,6 +122,9 @@ pub struct Session {
     /// The k of the last update (Table I's rows are made for it).
     k: f64,
     point: Option<PointState>,
+    /// The user's generalisation, if on.
+    generalise: Option<GeneraliseSpec>,
+    generalised: Option<generalise::GenState>,
     rl: Option<RlState>,
     runs: StageRuns,
     counter: u64,
@@ -141,6 +148,8 @@ impl Session {
             presets: None,
             k: dmpscope_core::DEFAULT_K,
             point: None,
+            generalise: None,
+            generalised: None,
             rl: None,
             runs: StageRuns::default(),
             counter: 0,
@@ -210,6 +219,7 @@ impl Session {
                     rl.progress.cancelled = true;
                 }
             }
+            Command::SetGeneralise(spec) => self.generalise = spec,
             Command::ClearMessages => self.messages.clear(),
             Command::Say(notice) => self.messages.push(notice),
         }
@@ -228,7 +238,38 @@ impl Session {
         self.update_constrained(settings);
         self.update_presets();
         self.update_point(settings);
+        self.update_generalised(settings);
         self.update_rl();
+    }
+
+    /// The generalisation: recomputed when the model, the operating point
+    /// or the target changes.
+    fn update_generalised(&mut self, settings: &Settings) {
+        let (Some(spec), Some((model, version))) = (self.generalise, self.model_and_version())
+        else {
+            self.generalised = None;
+            return;
+        };
+        let key = generalise::GenKey::new(version, settings.op, &spec);
+        if self.generalised.as_ref().is_none_or(|g| g.key != key) {
+            self.runs.generalised += 1;
+            self.generalised = Some(generalise::GenState {
+                key,
+                result: generalise::compute(&model, settings.op, &spec),
+            });
+        }
+    }
+
+    /// The generalisation asked for (`None`: off).
+    pub fn generalise_spec(&self) -> Option<&GeneraliseSpec> {
+        self.generalise.as_ref()
+    }
+
+    /// The generalised run at the operating point, or why there is none.
+    pub fn generalised(&self) -> Option<Result<&GenView, &str>> {
+        self.generalised
+            .as_ref()
+            .map(|g| g.result.as_ref().map_err(String::as_str))
     }
 
     /// The recordings opened, in order.

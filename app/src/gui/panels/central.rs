@@ -8,7 +8,8 @@ use eframe::egui::{self, Color32};
 use super::super::commands::{Command, Map};
 use super::super::heatmap::{self, MapInput, Marker};
 use super::super::view_state::ViewState;
-use crate::session::{Session, Settings, Shown, Status};
+use super::super::view3d::{GenOverlay, Handle};
+use crate::session::{Command as SessionCommand, Session, Settings, Shown, Status};
 
 /// The central panel.
 pub fn central_ui(
@@ -29,8 +30,30 @@ pub fn central_ui(
             .and_then(|(r, p)| p.greedy.as_ref().map(|g| (r.demo, g.path.as_slice())));
         // The demo hovered anywhere is the one the 3D view highlights.
         let highlighted = view.hovered.unwrap_or(view.selected);
-        view.view3d
-            .show(ui, model, session.paths(), highlighted, view.t, learned);
+        let generalised = session.generalised().and_then(Result::ok);
+        let overlay = generalised.map(|g| GenOverlay {
+            path: &g.out.unit.y,
+            band: &g.out.band,
+            start: g.out.start,
+            goal: g.out.goal,
+        });
+        let moved = view.view3d.show(
+            ui,
+            model,
+            session.paths(),
+            highlighted,
+            view.t,
+            learned,
+            overlay.as_ref(),
+        );
+        if let (Some(m), Some(spec)) = (moved, session.generalise_spec()) {
+            let mut spec = *spec;
+            match m.handle {
+                Handle::Start => spec.target.start = Some(m.to),
+                Handle::Goal => spec.target.goal = Some(m.to),
+            }
+            return vec![SessionCommand::SetGeneralise(Some(spec)).into()];
+        }
     }
     Vec::new()
 }

@@ -8,6 +8,7 @@ mod central;
 mod demos;
 mod diagnostics;
 mod gains;
+mod generalise;
 mod loading;
 mod plots_panel;
 mod recording;

@@ -1,15 +1,15 @@
-//! The right panel, in three tabs: the demo shown with a time slider and
+//! The right panel, in four tabs: the demo shown with a time slider and
 //! its time plots against its regeneration at the operating point; every
 //! demo's standardised forcing term and sigma_f there; the Pareto front of
-//! (sum d, S).
+//! (sum d, S); the demo or the skill at a new start, goal and duration.
 
 use eframe::egui;
 
 use super::super::commands::Command;
 use super::super::view_state::{RightTab, ViewState};
-use super::super::{forcing, plots, tradeoff};
-use super::diagnostics;
-use crate::session::{Session, Settings};
+use super::super::{forcing, gen_plots, plots, tradeoff};
+use super::{diagnostics, generalise};
+use crate::session::{GenSource, Session, Settings};
 
 /// The plots panel.
 pub fn plots_ui(
@@ -25,6 +25,7 @@ pub fn plots_ui(
         ui.selectable_value(&mut view.right, RightTab::Demo, "Demo");
         ui.selectable_value(&mut view.right, RightTab::Forcing, "Forcing terms");
         ui.selectable_value(&mut view.right, RightTab::TradeOff, "Trade-off");
+        ui.selectable_value(&mut view.right, RightTab::Generalised, "New target");
     });
     ui.separator();
     match view.right {
@@ -34,6 +35,7 @@ pub fn plots_ui(
             tradeoff_tab(ui, session, s, view);
             return Vec::new();
         }
+        RightTab::Generalised => return generalised_tab(ui, session, view),
     }
     let demos = model.demos();
     let Some(demo) = demos.get(view.selected) else {
@@ -65,6 +67,36 @@ pub fn plots_ui(
         view.t = t;
     }
     Vec::new()
+}
+
+fn generalised_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) -> Vec<Command> {
+    let Some(model) = session.model() else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    generalise::generalise_ui(ui, session, view, &mut out);
+    let Some(Ok(g)) = session.generalised() else {
+        return out;
+    };
+    ui.weak("solid: at the new target · dashed: at its own · dotted: the new goal");
+    let own = session
+        .generalise_spec()
+        .and_then(|spec| match spec.source {
+            GenSource::Demo(i) => Some(i),
+            GenSource::Skill => None,
+        })
+        .and_then(|i| {
+            let d = model.demos().get(i)?;
+            Some(gen_plots::OwnRun {
+                rollout: session.paths().get(i)?,
+                origin: d.p0,
+                duration_s: d.duration_s,
+            })
+        });
+    if let Some(t) = gen_plots::show(ui, g, own, view.t) {
+        view.t = t;
+    }
+    out
 }
 
 fn forcing_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) -> Vec<Command> {

@@ -95,6 +95,41 @@ impl OrbitCamera {
         proj * view
     }
 
+    /// The ray through normalised device coordinates `ndc` (x right, y up,
+    /// -1..1): its origin on the near plane and its direction (unit).
+    pub fn ray(&self, aspect: f32, ndc: Vec2) -> (Vec3, Vec3) {
+        let inv = self.view_proj(aspect).inverse();
+        let near = inv.project_point3(Vec3::new(ndc.x, ndc.y, 0.0));
+        let far = inv.project_point3(Vec3::new(ndc.x, ndc.y, 1.0));
+        (near, (far - near).normalize_or_zero())
+    }
+
+    /// Where the ray through `ndc` meets the horizontal plane at height
+    /// `z`, if it does in front of the camera and not too far away
+    /// (`within` of `near_to`): a grazing ray gives `None`, not a point at
+    /// infinity.
+    pub fn hit_level(
+        &self,
+        aspect: f32,
+        ndc: Vec2,
+        z: f32,
+        near_to: Vec3,
+        within: f32,
+    ) -> Option<Vec3> {
+        let (o, d) = self.ray(aspect, ndc);
+        if d.z.abs() < 1e-4 {
+            return None;
+        }
+        let t = (z - o.z) / d.z;
+        let hit = o + t * d;
+        (t > 0.0 && (hit - near_to).length() <= within).then_some(hit)
+    }
+
+    /// World units per screen point at `p`, in a view `height` points tall.
+    pub fn units_per_point(&self, p: Vec3, height: f32) -> f32 {
+        2.0 * (p - self.eye()).length() * (0.5 * FOV_Y).tan() / height.max(1.0)
+    }
+
     /// Orbits by a drag of `delta` points.
     pub fn orbit(&mut self, delta: Vec2) {
         self.yaw -= delta.x * 0.01;
@@ -158,6 +193,24 @@ mod tests {
         cam.pan(Vec2::new(20.0, 0.0), 400.0);
         assert!((cam.target - target).length() > 0.0);
         assert_eq!(cam.target.z, target.z, "a horizontal pan stays level");
+    }
+
+    #[test]
+    fn a_pointer_ray_meets_the_level_of_a_point_at_that_point() {
+        let b = bounds();
+        let cam = OrbitCamera::fit(&b, Vec3::X);
+        let aspect = 1.6;
+        let p = Vec3::new(0.3, 0.15, 0.05);
+        let c = cam.view_proj(aspect) * p.extend(1.0);
+        let ndc = Vec2::new(c.x / c.w, c.y / c.w);
+        let hit = cam.hit_level(aspect, ndc, p.z, p, 1.0).expect("hit");
+        assert!((hit - p).length() < 1e-4, "{hit:?} vs {p:?}");
+        // A ray looking up from below the plane's far side misses.
+        assert!(
+            cam.hit_level(aspect, Vec2::new(0.0, 1.0), 10.0, p, 1.0)
+                .is_none()
+        );
+        assert!(cam.units_per_point(p, 400.0) > 0.0);
     }
 
     #[test]

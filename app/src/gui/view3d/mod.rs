@@ -15,7 +15,40 @@ use eframe::egui_wgpu;
 use glam::Vec2;
 
 use camera::OrbitCamera;
-use scene::Frame;
+use scene::{Frame, SceneGen};
+
+/// A run at a new target drawn over the demos, its start and goal draggable.
+pub struct GenOverlay<'a> {
+    /// Absolute positions on the unit-time grid.
+    pub path: &'a [[f64; 3]],
+    /// A skill's ±1 SD per axis (empty for a demo).
+    pub band: &'a [[f64; 3]],
+    /// The start, absolute.
+    pub start: [f64; 3],
+    /// The goal, absolute.
+    pub goal: [f64; 3],
+}
+
+/// A handle of the overlay.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Handle {
+    /// The start.
+    Start,
+    /// The goal.
+    Goal,
+}
+
+/// A handle dragged to a new place this frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HandleMove {
+    /// Which.
+    pub handle: Handle,
+    /// Where to, absolute metres.
+    pub to: [f64; 3],
+}
+
+/// How close (points) a press must be to a handle to grab it.
+const GRAB_RADIUS: f32 = 14.0;
 
 /// The hue of demo `i` (Tableau 10, repeating), sRGB.
 pub fn demo_colour(i: usize) -> [u8; 3] {
@@ -36,6 +69,11 @@ pub struct View3d {
     pub visible: Vec<bool>,
     /// Draw the regenerated paths.
     pub show_regen: bool,
+    /// The overlay's handle being dragged.
+    dragging: Option<Handle>,
+    /// Where the overlay's start and goal were drawn last frame (screen
+    /// points), for tests and tools.
+    handles_on_screen: Option<[egui::Pos2; 2]>,
 }
 
 impl View3d {
@@ -50,7 +88,15 @@ impl View3d {
             frame: None,
             visible: Vec::new(),
             show_regen: true,
+            dragging: None,
+            handles_on_screen: None,
         }
+    }
+
+    /// Where the start and goal handles of the run at a new target were
+    /// drawn last frame, screen points.
+    pub fn handles_on_screen(&self) -> Option<[egui::Pos2; 2]> {
+        self.handles_on_screen
     }
 
     /// Forgets the camera and visibility (a new model).
@@ -90,7 +136,9 @@ impl View3d {
 
     /// Draws the view in the space left in `ui`, for `model` with the demos'
     /// regenerations `regen` (same order), `selected` demo and time cursor
-    /// `t` (unit time) and a `learned` RL path (demo index, positions).
+    /// `t` (unit time), a `learned` RL path (demo index, positions) and a
+    /// run at a new target. Returns where a dragged handle of that run went.
+    #[allow(clippy::too_many_arguments)]
     pub fn show(
         &mut self,
         ui: &mut egui::Ui,
@@ -99,7 +147,8 @@ impl View3d {
         selected: usize,
         t: f64,
         learned: Option<(usize, &[[f64; 3]])>,
-    ) {
+        overlay: Option<&GenOverlay<'_>>,
+    ) -> Option<HandleMove> {
         let size = ui.available_size().max(egui::vec2(120.0, 120.0));
         let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
         let painter = ui.painter_at(rect);
@@ -112,11 +161,9 @@ impl View3d {
                 FontId::proportional(14.0),
                 Color32::GRAY,
             );
-            return;
+            return None;
         }
-        let Some(frame) = Frame::of(model.demos()) else {
-            return;
-        };
+        let frame = Frame::of(model.demos())?;
         if self.frame != Some(frame) || self.camera.is_none() {
             self.frame = Some(frame);
             self.camera = Some(OrbitCamera::fit(&frame.bounds, frame.motion));
@@ -124,10 +171,20 @@ impl View3d {
         let mut camera = self
             .camera
             .unwrap_or_else(|| OrbitCamera::fit(&frame.bounds, frame.motion));
+        let aspect = rect.width() / rect.height().max(1.0);
+        let delta = Vec2::new(response.drag_delta().x, response.drag_delta().y);
+        let moved = match overlay {
+            Some(ov) => self.drag_handle(ui, &response, rect, &camera, &frame, ov),
+            None => {
+                self.dragging = None;
+                None
+            }
+        };
         // Orbit (left drag), pan (right or middle drag), zoom (wheel),
         // fit again (double-click).
-        let delta = Vec2::new(response.drag_delta().x, response.drag_delta().y);
-        if response.dragged_by(egui::PointerButton::Primary) {
+        if self.dragging.is_some() {
+            // The drag moves a handle, not the camera.
+        } else if response.dragged_by(egui::PointerButton::Primary) {
             camera.orbit(delta);
         } else if response.dragged_by(egui::PointerButton::Secondary)
             || response.dragged_by(egui::PointerButton::Middle)
@@ -158,10 +215,29 @@ impl View3d {
             colours: &colours,
             pixels_per_point: ppp,
             learned,
+            generalised: overlay.map(|ov| SceneGen {
+                path: ov.path,
+                band: ov.band,
+                start: ov.start,
+                goal: ov.goal,
+                active: self.dragging.map(|h| match h {
+                    Handle::Start => 0,
+                    Handle::Goal => 1,
+                }),
+            }),
         };
         let segments = Arc::new(scene::build(&frame, &input));
-        let aspect = rect.width() / rect.height().max(1.0);
         let view_proj = camera.view_proj(aspect);
+        self.handles_on_screen = overlay.and_then(|ov| {
+            let screen = |p: [f64; 3]| {
+                let c = view_proj * frame.local(p).extend(1.0);
+                (c.w > 1e-6).then(|| {
+                    let ndc = c.truncate() / c.w;
+                    rect.center() + egui::vec2(ndc.x, -ndc.y) * (rect.size() * 0.5)
+                })
+            };
+            Some([screen(ov.start)?, screen(ov.goal)?])
+        });
         let uniforms = gpu::Uniforms {
             view_proj: view_proj.to_cols_array_2d(),
             viewport: [rect.width() * ppp, rect.height() * ppp],
@@ -204,8 +280,13 @@ impl View3d {
             rect.left_top() + egui::vec2(6.0, 6.0),
             Align2::LEFT_TOP,
             format!(
-                "solid: demo · dashed: DMP · gold: RL{} · grid {:.0} mm",
+                "solid: demo · dashed: DMP · gold: RL{}{} · grid {:.0} mm",
                 if learned.is_some() { "" } else { " (none yet)" },
+                if overlay.is_some() {
+                    " · white: new target (drag start/goal, Shift: up)"
+                } else {
+                    ""
+                },
                 step * 1000.0
             ),
         );
@@ -214,5 +295,65 @@ impl View3d {
             Align2::LEFT_BOTTOM,
             "drag: orbit · right-drag: pan · wheel: zoom · double-click: reset".to_owned(),
         );
+        moved
+    }
+
+    /// Grabs a handle of `ov` when a drag starts on it, and moves it while
+    /// the drag lasts: on the horizontal plane through it, or up and down
+    /// with Shift.
+    fn drag_handle(
+        &mut self,
+        ui: &egui::Ui,
+        response: &egui::Response,
+        rect: egui::Rect,
+        camera: &OrbitCamera,
+        frame: &Frame,
+        ov: &GenOverlay<'_>,
+    ) -> Option<HandleMove> {
+        let aspect = rect.width() / rect.height().max(1.0);
+        let view_proj = camera.view_proj(aspect);
+        let to_screen = |p: glam::Vec3| {
+            let c = view_proj * p.extend(1.0);
+            (c.w > 1e-6).then(|| {
+                let ndc = c.truncate() / c.w;
+                rect.center() + egui::vec2(ndc.x, -ndc.y) * (rect.size() * 0.5)
+            })
+        };
+        if response.drag_started_by(egui::PointerButton::Primary)
+            && let Some(press) = ui.input(|i| i.pointer.press_origin())
+        {
+            let distance = |p: [f64; 3]| {
+                to_screen(frame.local(p)).map_or(f32::INFINITY, |s| s.distance(press))
+            };
+            let (ds, dg) = (distance(ov.start), distance(ov.goal));
+            self.dragging = if dg <= GRAB_RADIUS && dg <= ds {
+                Some(Handle::Goal)
+            } else if ds <= GRAB_RADIUS {
+                Some(Handle::Start)
+            } else {
+                None
+            };
+        }
+        let handle = self.dragging?;
+        if !response.dragged_by(egui::PointerButton::Primary) {
+            self.dragging = None;
+            return None;
+        }
+        let current = match handle {
+            Handle::Start => ov.start,
+            Handle::Goal => ov.goal,
+        };
+        let p = frame.local(current);
+        let new_local = if ui.input(|i| i.modifiers.shift) {
+            let dz = -response.drag_delta().y * camera.units_per_point(p, rect.height());
+            Some(p + glam::Vec3::Z * dz)
+        } else {
+            let pointer = response.interact_pointer_pos()?;
+            let rel = (pointer - rect.center()) / (rect.size() * 0.5);
+            let reach = 10.0 * frame.bounds.radius();
+            camera.hit_level(aspect, Vec2::new(rel.x, -rel.y), p.z, p, reach)
+        }?;
+        let to = std::array::from_fn(|a| frame.origin[a] + f64::from(new_local[a]));
+        Some(HandleMove { handle, to })
     }
 }

@@ -50,6 +50,22 @@ pub struct SceneInput<'a> {
     /// A path an RL agent learned: (demo index, positions in demo
     /// coordinates), drawn gold on top.
     pub learned: Option<(usize, &'a [[f64; 3]])>,
+    /// A run at a new target, drawn white with its start and goal handles.
+    pub generalised: Option<SceneGen<'a>>,
+}
+
+/// A generalised run in the scene (absolute positions).
+pub struct SceneGen<'a> {
+    /// The path on the unit-time grid.
+    pub path: &'a [[f64; 3]],
+    /// A skill's ±1 SD per axis (empty for a demo).
+    pub band: &'a [[f64; 3]],
+    /// The start handle.
+    pub start: [f64; 3],
+    /// The goal handle.
+    pub goal: [f64; 3],
+    /// The handle being dragged: 0 start, 1 goal.
+    pub active: Option<usize>,
 }
 
 /// The scene's frame: the origin subtracted from world points and the box
@@ -290,6 +306,40 @@ pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
         out.dot(start, c, 7.0 * ppp);
         out.dot(goal, c, 11.0 * ppp);
         out.dot(goal, dark, 5.0 * ppp);
+    }
+
+    // A run at a new target: white, its band faint, its handles on top.
+    if let Some(g) = &input.generalised {
+        let local = |p: &[f64; 3]| frame.local(*p);
+        let path: Vec<Vec3> = g.path.iter().map(local).collect();
+        if g.band.len() == g.path.len() {
+            for sign in [-1.0, 1.0] {
+                let edge: Vec<Vec3> = g
+                    .path
+                    .iter()
+                    .zip(g.band)
+                    .map(|(p, b)| local(&std::array::from_fn(|a| p[a] + sign * b[a])))
+                    .collect();
+                out.path(&edge, [1.0, 1.0, 1.0, 0.35], 1.0 * ppp, dash);
+            }
+        }
+        out.path(&path, [0.97, 0.97, 0.97, 1.0], 3.0 * ppp, 0.0);
+        let handle = |i: usize| {
+            if g.active == Some(i) {
+                [1.0, 0.85, 0.3, 1.0]
+            } else {
+                [0.97, 0.97, 0.97, 1.0]
+            }
+        };
+        let (start, goal) = (frame.local(g.start), frame.local(g.goal));
+        out.dot(start, dark, 13.0 * ppp);
+        out.dot(start, handle(0), 10.0 * ppp);
+        out.dot(goal, handle(1), 16.0 * ppp);
+        out.dot(goal, dark, 8.0 * ppp);
+        if let Some(p) = at_time(&path, input.t) {
+            out.dot(p, [0.1, 0.1, 0.1, 1.0], 12.0 * ppp);
+            out.dot(p, [0.97, 0.97, 0.97, 1.0], 8.0 * ppp);
+        }
     }
 
     // The time cursor on the selected demo and its regeneration.

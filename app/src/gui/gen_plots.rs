@@ -1,0 +1,132 @@
+//! Time plots of a generalised run (method.md section 10) in real time over
+//! its duration T': position (with the goal per axis, so an overshoot
+//! shows), velocity and acceleration per axis; a skill's ±1 SD band around
+//! its position; the source at its own target dashed for comparison.
+
+use dmpscope_core::Rollout;
+use eframe::egui::{self, Color32};
+use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, VLine};
+
+use crate::session::GenView;
+
+const AXES: [(&str, Color32); 3] = [
+    ("x", Color32::from_rgb(230, 90, 80)),
+    ("y", Color32::from_rgb(90, 190, 100)),
+    ("z", Color32::from_rgb(90, 140, 230)),
+];
+
+/// Points drawn per line at most (as in the demo plots).
+const MAX_POINTS: usize = 300;
+
+/// The source at its own target: its unit-time path, its origin (the
+/// path's positions are relative to it) and its own duration.
+pub struct OwnRun<'a> {
+    /// The regenerated path at the operating point (demo coordinates).
+    pub rollout: &'a Rollout,
+    /// Added to the positions to make them absolute.
+    pub origin: [f64; 3],
+    /// Its duration, seconds.
+    pub duration_s: f64,
+}
+
+fn series(
+    values: &[[f64; 3]],
+    axis: usize,
+    time: impl Fn(usize) -> f64,
+    value: impl Fn(f64) -> f64,
+) -> PlotPoints<'static> {
+    let stride = values.len().div_ceil(MAX_POINTS).max(1);
+    let last = values.len().saturating_sub(1);
+    values
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| k % stride == 0 || *k == last)
+        .map(|(k, p)| [time(k), value(p[axis])])
+        .collect()
+}
+
+/// Shows the three plots; `t` is the time cursor in unit time. Returns the
+/// unit time under the pointer while it is over a plot.
+pub fn show(ui: &mut egui::Ui, g: &GenView, own: Option<OwnRun<'_>>, t: f64) -> Option<f64> {
+    let o = &g.out;
+    let n = o.t.len();
+    let tau = o.duration_s;
+    let height = ((ui.available_height() - 12.0) / 3.0).max(60.0);
+    let group = ui.scope_id().with("generalised plots");
+    let mut hovered = None;
+    for row in 0..3 {
+        let label = ["position [m]", "velocity [m/s]", "acceleration [m/s²]"][row];
+        let response = Plot::new(("generalised", row))
+            .height(height)
+            .legend(Legend::default())
+            .link_axis(group, [true, false])
+            .link_cursor(group, [true, false])
+            .y_axis_label(label)
+            .x_axis_label("time [s]")
+            .allow_scroll(false)
+            .show(ui, |plot| {
+                plot.vline(
+                    VLine::new("time", t * tau)
+                        .color(Color32::from_gray(200))
+                        .width(1.0),
+                );
+                for (ax, (name, colour)) in AXES.iter().enumerate() {
+                    let at = |k: usize| o.t[k];
+                    let values = match row {
+                        0 => &o.unit.y,
+                        1 => &o.v,
+                        _ => &o.a,
+                    };
+                    plot.line(
+                        Line::new(format!("new {name}"), series(values, ax, at, |v| v))
+                            .color(*colour)
+                            .width(2.0),
+                    );
+                    if row == 0 {
+                        plot.hline(
+                            HLine::new("", o.goal[ax])
+                                .color(colour.gamma_multiply(0.6))
+                                .style(LineStyle::dotted_dense()),
+                        );
+                        if o.band.len() == n {
+                            for sign in [-1.0, 1.0] {
+                                let points: PlotPoints<'static> = (0..n)
+                                    .step_by(n.div_ceil(MAX_POINTS).max(1))
+                                    .map(|k| [o.t[k], o.unit.y[k][ax] + sign * o.band[k][ax]])
+                                    .collect();
+                                plot.line(
+                                    Line::new("", points)
+                                        .color(colour.gamma_multiply(0.45))
+                                        .width(1.0),
+                                );
+                            }
+                        }
+                    }
+                    if let Some(own) = &own {
+                        let m = own.rollout.y.len();
+                        let own_t = |k: usize| own.duration_s * k as f64 / (m.max(2) - 1) as f64;
+                        let (values, scale, shift) = match row {
+                            0 => (&own.rollout.y, 1.0, own.origin[ax]),
+                            1 => (&own.rollout.v, 1.0 / own.duration_s, 0.0),
+                            _ => (&own.rollout.a, 1.0 / (own.duration_s * own.duration_s), 0.0),
+                        };
+                        plot.line(
+                            Line::new(
+                                format!("own {name}"),
+                                series(values, ax, own_t, |v| v * scale + shift),
+                            )
+                            .color(colour.gamma_multiply(0.7))
+                            .style(LineStyle::dashed_loose()),
+                        );
+                    }
+                }
+                plot.pointer_coordinate()
+            });
+        if response.response.hovered()
+            && let Some(p) = response.inner
+        {
+            hovered = Some((p.x / tau).clamp(0.0, 1.0));
+        }
+    }
+    hovered
+}

@@ -1,0 +1,194 @@
+//! The controls of the right panel's "New target" tab (method.md section
+//! 10): the selected demo or the skill of all demos at the
+//! operating point's gains, run from a typed (or, in the 3D view, dragged)
+//! start to a goal over a duration, with the scaling mode, its peak speed,
+//! peak acceleration and end error, and Reset.
+
+use dmpscope_core::{Model, Scaling, Target};
+use eframe::egui::{self, Color32};
+
+use super::super::commands::Command;
+use super::super::view_state::ViewState;
+use crate::session::{Command as SessionCommand, GenSource, GeneraliseSpec, Session};
+
+/// The source's own start, goal (absolute) and duration.
+pub fn own_target(model: &Model, source: GenSource) -> Option<([f64; 3], [f64; 3], f64)> {
+    let demos = model.demos();
+    match source {
+        GenSource::Demo(i) => demos.get(i).map(|d| {
+            (
+                d.p0,
+                std::array::from_fn(|a| d.p0[a] + d.goal[a]),
+                d.duration_s,
+            )
+        }),
+        GenSource::Skill => {
+            let n = demos.len().max(1) as f64;
+            let mean = |f: &dyn Fn(&dmpscope_core::PreparedDemo) -> [f64; 3]| -> [f64; 3] {
+                std::array::from_fn(|a| demos.iter().map(|d| f(d)[a]).sum::<f64>() / n)
+            };
+            let start = mean(&|d| d.p0);
+            let shift = mean(&|d| d.goal);
+            let goal = std::array::from_fn(|a| start[a] + shift[a]);
+            let duration = demos.iter().map(|d| d.duration_s).sum::<f64>() / n;
+            Some((start, goal, duration))
+        }
+    }
+}
+
+/// Three coordinates as drag values; returns the new value when edited.
+fn triple(ui: &mut egui::Ui, label: &str, value: [f64; 3]) -> Option<[f64; 3]> {
+    let mut v = value;
+    let mut changed = false;
+    ui.horizontal(|ui| {
+        let l = ui.label(label);
+        for (c, name) in v.iter_mut().zip(["x", "y", "z"]) {
+            changed |= ui
+                .add(
+                    egui::DragValue::new(c)
+                        .speed(0.002)
+                        .fixed_decimals(3)
+                        .prefix(format!("{name} "))
+                        .suffix(" m"),
+                )
+                .labelled_by(l.id)
+                .changed();
+        }
+    });
+    changed.then_some(v)
+}
+
+/// The section.
+pub fn generalise_ui(
+    ui: &mut egui::Ui,
+    session: &Session,
+    view: &mut ViewState,
+    out: &mut Vec<Command>,
+) {
+    let Some(model) = session.model() else {
+        ui.weak("Needs demonstrations.");
+        return;
+    };
+    let current = session.generalise_spec().copied();
+    let mut on = current.is_some();
+    if !on {
+        ui.label(
+            "Run the selected demo, or the skill of all demos, at the operating point's gains \
+             from a new start to a new goal over a new duration: what a robot does with them.",
+        );
+    }
+    if ui
+        .checkbox(&mut on, "Run the DMP at a new target")
+        .on_hover_text(
+            "The selected demo (or the skill of all demos) at the operating point's gains, \
+             from a new start to a new goal over a new duration",
+        )
+        .changed()
+    {
+        out.push(
+            SessionCommand::SetGeneralise(on.then(|| GeneraliseSpec::demo(view.selected))).into(),
+        );
+        return;
+    }
+    let Some(mut spec) = current else {
+        return;
+    };
+    let before = spec;
+    // A demo source follows the demo the plots show.
+    if let GenSource::Demo(i) = spec.source
+        && i != view.selected
+    {
+        spec.source = GenSource::Demo(view.selected);
+    }
+    ui.horizontal(|ui| {
+        ui.label("of");
+        let demo = GenSource::Demo(view.selected);
+        ui.selectable_value(&mut spec.source, demo, "the selected demo");
+        ui.selectable_value(&mut spec.source, GenSource::Skill, "the skill of all demos")
+            .on_hover_text(
+                "The mean of the demos' forcing terms, each mapped to the mean displacement \
+                 by the scaling mode; the band is ±1 SD of the demos' own runs",
+            );
+    });
+    ui.horizontal(|ui| {
+        ui.label("scaling");
+        ui.selectable_value(&mut spec.target.scaling, Scaling::Paper, "per axis (paper)")
+            .on_hover_text("f_a (g'_a - y0'_a) / (g_a - y0_a) on each axis");
+        ui.selectable_value(
+            &mut spec.target.scaling,
+            Scaling::Frame,
+            "frame-independent",
+        )
+        .on_hover_text(
+            "A rotation and a uniform scale taking g - y0 onto g' - y0': no per-axis \
+                 singularity",
+        );
+    });
+    if spec.source != before.source {
+        // A new source starts at its own target.
+        spec = spec.reset();
+    }
+    if let Some((own_start, own_goal, own_duration)) = own_target(model, spec.source) {
+        let start = spec.target.start.unwrap_or(own_start);
+        let goal = spec.target.goal.unwrap_or(own_goal);
+        if let Some(v) = triple(ui, "start", start) {
+            spec.target.start = Some(v);
+        }
+        if let Some(v) = triple(ui, "goal ", goal) {
+            spec.target.goal = Some(v);
+        }
+        ui.horizontal(|ui| {
+            let l = ui.label("duration T'");
+            let mut d = spec.target.duration_s.unwrap_or(own_duration);
+            if ui
+                .add(
+                    egui::DragValue::new(&mut d)
+                        .speed(0.01)
+                        .range(0.05..=120.0)
+                        .fixed_decimals(2)
+                        .suffix(" s"),
+                )
+                .labelled_by(l.id)
+                .changed()
+            {
+                spec.target.duration_s = Some(d);
+            }
+            ui.weak(format!("(own {own_duration:.2} s)"));
+            let moved = spec.target
+                != Target {
+                    scaling: spec.target.scaling,
+                    ..Target::default()
+                };
+            if ui
+                .add_enabled(moved, egui::Button::new("Reset"))
+                .on_hover_text("Back to the source's own start, goal and duration")
+                .clicked()
+            {
+                spec = spec.reset();
+            }
+        });
+    }
+    match session.generalised() {
+        Some(Ok(g)) => {
+            let o = &g.out;
+            ui.label(format!(
+                "peak speed {:.3} m/s · a_peak {:.3} m/s² · ends {:.1} mm from the goal",
+                o.peak_speed,
+                o.a_peak,
+                o.final_error * 1e3
+            ))
+            .on_hover_text("In real time over T'");
+            for w in &o.warnings {
+                ui.colored_label(Color32::from_rgb(240, 180, 80), w);
+            }
+        }
+        Some(Err(e)) => {
+            ui.colored_label(Color32::from_rgb(240, 120, 100), e);
+        }
+        None => {}
+    }
+    ui.weak("3D view: drag the white goal ring or start disc (Shift: height)");
+    if spec != before {
+        out.push(SessionCommand::SetGeneralise(Some(spec)).into());
+    }
+}

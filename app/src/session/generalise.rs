@@ -1,0 +1,122 @@
+//! The generalisation stage (method.md section 10): the selected demo or
+//! the skill of all demos, at the operating point's gains, run at a new
+//! start, goal and duration. Recomputed when the model, the operating point
+//! or the target changes (a drag of the goal changes the target every
+//! frame: one primitive and its rollout, well under a millisecond).
+
+use dmpscope_core::{Generalised, Model, Primitive, Scaling, Skill, Target};
+
+/// What is generalised.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum GenSource {
+    /// A model demo (its index).
+    Demo(usize),
+    /// The skill of all the model's demos.
+    Skill,
+}
+
+/// The user's generalisation: what, where to and how.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GeneraliseSpec {
+    /// The demo or the skill.
+    pub source: GenSource,
+    /// New start, goal (absolute metres) and duration; `None` keeps the
+    /// source's own; the scaling mode.
+    pub target: Target,
+}
+
+impl GeneraliseSpec {
+    /// Demo `i` at its own target, per-axis scaling.
+    pub fn demo(i: usize) -> Self {
+        Self {
+            source: GenSource::Demo(i),
+            target: Target::default(),
+        }
+    }
+
+    /// The same source and scaling at the source's own target (Reset).
+    pub fn reset(&self) -> Self {
+        Self {
+            source: self.source,
+            target: Target {
+                scaling: self.target.scaling,
+                ..Target::default()
+            },
+        }
+    }
+}
+
+/// A generalised run, as the views show it.
+#[derive(Clone, Debug)]
+pub struct GenView {
+    /// The primitive run (its own start, goal and duration are the
+    /// defaults of the target).
+    pub primitive: Primitive,
+    /// The run at the target.
+    pub out: Generalised,
+    /// Skills: the forcing terms' per-time SD.
+    pub forcing_sd: Option<Vec<[f64; 3]>>,
+}
+
+/// The key the stage was computed for (f64s by their bits).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct GenKey {
+    model: u64,
+    dm: u64,
+    km: u64,
+    source: GenSource,
+    start: Option<[u64; 3]>,
+    goal: Option<[u64; 3]>,
+    duration: Option<u64>,
+    scaling: Scaling,
+}
+
+impl GenKey {
+    pub(super) fn new(model: u64, (dm, km): (f64, f64), spec: &GeneraliseSpec) -> Self {
+        let bits = |v: [f64; 3]| v.map(f64::to_bits);
+        Self {
+            model,
+            dm: dm.to_bits(),
+            km: km.to_bits(),
+            source: spec.source,
+            start: spec.target.start.map(bits),
+            goal: spec.target.goal.map(bits),
+            duration: spec.target.duration_s.map(f64::to_bits),
+            scaling: spec.target.scaling,
+        }
+    }
+}
+
+/// The stage's state.
+pub(super) struct GenState {
+    pub(super) key: GenKey,
+    pub(super) result: Result<GenView, String>,
+}
+
+/// Runs `spec` on `model` at `(dm, km)`; errors are sentences for the panel.
+pub(super) fn compute(
+    model: &Model,
+    (dm, km): (f64, f64),
+    spec: &GeneraliseSpec,
+) -> Result<GenView, String> {
+    let (primitive, forcing_sd) = match spec.source {
+        GenSource::Demo(i) => (
+            Primitive::of_demo(model, i, dm, km).map_err(|e| e.to_string())?,
+            None,
+        ),
+        GenSource::Skill => {
+            let skill =
+                Skill::new(model, dm, km, spec.target.scaling).map_err(|e| e.to_string())?;
+            (skill.primitive, Some(skill.forcing_sd))
+        }
+    };
+    let out = primitive.rollout(&spec.target).map_err(|e| match e {
+        dmpscope_core::Error::InvalidSetting(m) => m,
+        other => other.to_string(),
+    })?;
+    Ok(GenView {
+        primitive,
+        out,
+        forcing_sd,
+    })
+}
