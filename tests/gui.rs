@@ -378,3 +378,76 @@ fn background_threads_load_compute_and_extract() {
     );
     assert_eq!(session.model().map(|m| m.demos().len()), Some(10));
 }
+
+#[test]
+fn the_new_target_tab_runs_a_demo_or_the_skill_and_exports_it_for_a_robot() {
+    use dmpscope::gui::Export;
+    use dmpscope::session::{GenSource, GeneraliseSpec};
+    let mut h = harness();
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "New target")
+        .click();
+    h.run_steps(2);
+    assert!(h.state().session().generalised().is_none());
+    assert!(
+        h.state().export(Export::Dmp).is_err(),
+        "nothing to export yet"
+    );
+    h.get_by_label("Run the DMP at a new target").click();
+    h.run_steps(2);
+    let _readout = h.get_by_label_contains("peak speed");
+    // A goal moved towards the start: the per-axis factors shrink and the
+    // run still ends at the new goal.
+    let (start, goal) = {
+        let g = h
+            .state()
+            .session()
+            .generalised()
+            .expect("on")
+            .expect("runs");
+        (g.out.start, g.out.goal)
+    };
+    let closer: [f64; 3] = std::array::from_fn(|a| start[a] + 0.5 * (goal[a] - start[a]));
+    let mut spec = *h.state().session().generalise_spec().expect("on");
+    spec.target.goal = Some(closer);
+    spec.target.duration_s = Some(2.5);
+    let ctx = h.ctx.clone();
+    h.state_mut().apply(
+        Command::Session(session::Command::SetGeneralise(Some(spec))),
+        &ctx,
+    );
+    h.run_steps(2);
+    let (name, bytes) = h.state().export(Export::Dmp).expect("export");
+    assert_eq!(name, "dmpscope-dmp.json");
+    let doc: serde_json::Value = serde_json::from_slice(&bytes).expect("json");
+    assert_eq!(doc["schema"], "dmpscope.dmp");
+    assert_eq!(doc["source"], "demo");
+    assert_eq!(doc["tau"].as_f64(), Some(2.5));
+    let g_new: Vec<f64> = doc["g_new"]
+        .as_array()
+        .expect("g_new")
+        .iter()
+        .map(|v| v.as_f64().expect("number"))
+        .collect();
+    assert_eq!(g_new, closer);
+    // The skill, by its button.
+    h.get_by_label("the skill of all demos").click();
+    h.run_steps(2);
+    let spec = *h.state().session().generalise_spec().expect("on");
+    assert_eq!(spec.source, GenSource::Skill);
+    assert_eq!(
+        spec,
+        GeneraliseSpec {
+            source: GenSource::Skill,
+            ..spec.reset()
+        },
+        "a new source starts at its own target"
+    );
+    let (_, bytes) = h.state().export(Export::Dmp).expect("export");
+    let doc: serde_json::Value = serde_json::from_slice(&bytes).expect("json");
+    assert_eq!(doc["source"], "skill");
+    assert_eq!(doc["demos"].as_array().map(Vec::len), Some(10));
+    // Off again.
+    h.get_by_label("Run the DMP at a new target").click();
+    h.run_steps(2);
+    assert!(h.state().session().generalised().is_none());
+}

@@ -103,8 +103,66 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         om / 0.5
     );
     println!("operating point: full paths (median):  {rm:8.3} ms");
+    generalise_figures(&model)?;
     diagnostics_figures(&model, grid, args.repeat.max(1))?;
     rl_figures(&model)?;
+    Ok(())
+}
+
+/// A new target (method.md section 10): one generalised rollout of a demo
+/// (1001 steps), and what a drag of the goal costs the app per frame (the
+/// session's stage: a demo, and the skill of all demos with its band).
+fn generalise_figures(model: &std::sync::Arc<dmpscope_core::Model>) -> anyhow::Result<()> {
+    use dmpscope::session::{
+        Command, GenSource, GeneraliseSpec, Runner, Session, Settings, Source,
+    };
+    use dmpscope_core::{Primitive, Scaling, Target};
+    let (dm, km) = (25.0, 156.25);
+    let p = Primitive::of_demo(model, 0, dm, km)?;
+    let goal = p.goal_abs();
+    let mut one_ms = Vec::new();
+    for i in 0..2000 {
+        let target = Target {
+            goal: Some([goal[0] - 1e-4 * i as f64, goal[1], goal[2]]),
+            scaling: if i % 2 == 0 {
+                Scaling::Paper
+            } else {
+                Scaling::Frame
+            },
+            ..Target::default()
+        };
+        let t = Instant::now();
+        std::hint::black_box(p.rollout(&target)?);
+        one_ms.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    let m = median(&one_ms);
+    println!(
+        "new target: one rollout, 1001 steps (median): {m:8.4} ms   (goal 0.05 ms: {:.2}x)",
+        m / 0.05
+    );
+    let mut settings = Settings::with_grid_points(8);
+    settings.op = (dm, km);
+    let mut session = Session::new(Runner::inline());
+    session.apply(Command::AddSources(vec![Source::sample()]));
+    session.update(&settings);
+    for (what, source) in [("demo", GenSource::Demo(0)), ("skill", GenSource::Skill)] {
+        let mut spec = GeneraliseSpec {
+            source,
+            target: Target::default(),
+        };
+        let mut frame_ms = Vec::new();
+        for i in 0..500 {
+            spec.target.goal = Some([goal[0] - 1e-4 * i as f64, goal[1], goal[2]]);
+            let t = Instant::now();
+            session.apply(Command::SetGeneralise(Some(spec)));
+            session.update(&settings);
+            frame_ms.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+        println!(
+            "new target: a goal drag's frame, {what:<5} (median): {:8.4} ms   (session stage; 16.7 ms is a frame at 60 Hz)",
+            median(&frame_ms)
+        );
+    }
     Ok(())
 }
 

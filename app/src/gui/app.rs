@@ -123,8 +123,9 @@ impl DmpApp {
         }
     }
 
-    /// The file name and bytes of an export.
-    fn export(&self, what: Export) -> Result<(&'static str, Vec<u8>), String> {
+    /// The file name and bytes of an export (what the save dialog is
+    /// given; tests read it).
+    pub fn export(&self, what: Export) -> Result<(&'static str, Vec<u8>), String> {
         let report = || {
             self.session
                 .report()
@@ -149,7 +150,52 @@ impl DmpApp {
             }
             Export::TableCsv => ("dmpscope-table.csv", report()?.csv().into_bytes()),
             Export::TableMarkdown => ("dmpscope-table.md", report()?.markdown().into_bytes()),
+            Export::Dmp => ("dmpscope-dmp.json", self.dmp_json()?.into_bytes()),
         })
+    }
+
+    /// The run at the new target as `docs/export.md`'s document.
+    fn dmp_json(&self) -> Result<String, String> {
+        use dmpscope_core::io::dmp_doc::{DocContext, dmp_document};
+        let model = self
+            .session
+            .model()
+            .ok_or("nothing to export yet: no model")?;
+        let g = match self.session.generalised() {
+            Some(Ok(g)) => g,
+            Some(Err(e)) => return Err(format!("the run at the new target failed: {e}")),
+            None => return Err("turn on the run at a new target first (New target tab)".into()),
+        };
+        let skill = g.forcing_sd.is_some();
+        let demos = if skill {
+            model.demos().iter().map(|d| d.name.clone()).collect()
+        } else {
+            vec![g.primitive.name.clone()]
+        };
+        let scaling = self
+            .session
+            .generalise_spec()
+            .map(|s| s.target.scaling)
+            .unwrap_or_default();
+        let doc = dmp_document(
+            &g.primitive,
+            &g.out,
+            DocContext {
+                demos,
+                source: if skill { "skill" } else { "demo" },
+                basis: (&model.basis().centres, &model.basis().widths),
+                frame_id: self
+                    .settings
+                    .load
+                    .fixed_frame
+                    .clone()
+                    .unwrap_or_else(|| "world".to_owned()),
+                band: skill.then(|| g.out.band.clone()),
+                scaling,
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        serde_json::to_string(&doc).map_err(|e| e.to_string())
     }
 
     /// Files dropped on the window (paths natively, bytes in the browser)

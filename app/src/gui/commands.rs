@@ -38,6 +38,8 @@ pub enum Export {
     TableCsv,
     /// Table I as Markdown.
     TableMarkdown,
+    /// The DMP run at the new target, as `docs/export.md`'s JSON.
+    Dmp,
 }
 
 /// One of the three heat maps.

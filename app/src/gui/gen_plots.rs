@@ -1,7 +1,8 @@
 //! Time plots of a generalised run (method.md section 10) in real time over
-//! its duration T': position (with the goal per axis, so an overshoot
-//! shows), velocity and acceleration per axis; a skill's ±1 SD band around
-//! its position; the source at its own target dashed for comparison.
+//! its duration T': position from the start (with the goal per axis, so an
+//! overshoot shows at the motion's own scale), velocity and acceleration per
+//! axis; a skill's ±1 SD band around its position; the source at its own
+//! target dashed for comparison.
 
 use dmpscope_core::Rollout;
 use eframe::egui::{self, Color32};
@@ -18,13 +19,11 @@ const AXES: [(&str, Color32); 3] = [
 /// Points drawn per line at most (as in the demo plots).
 const MAX_POINTS: usize = 300;
 
-/// The source at its own target: its unit-time path, its origin (the
-/// path's positions are relative to it) and its own duration.
+/// The source at its own target: its unit-time path and its own duration.
 pub struct OwnRun<'a> {
-    /// The regenerated path at the operating point (demo coordinates).
+    /// The regenerated path at the operating point, relative to its start
+    /// (demo coordinates).
     pub rollout: &'a Rollout,
-    /// Added to the positions to make them absolute.
-    pub origin: [f64; 3],
     /// Its duration, seconds.
     pub duration_s: f64,
 }
@@ -55,7 +54,11 @@ pub fn show(ui: &mut egui::Ui, g: &GenView, own: Option<OwnRun<'_>>, t: f64) -> 
     let group = ui.scope_id().with("generalised plots");
     let mut hovered = None;
     for row in 0..3 {
-        let label = ["position [m]", "velocity [m/s]", "acceleration [m/s²]"][row];
+        let label = [
+            "position − start [m]",
+            "velocity [m/s]",
+            "acceleration [m/s²]",
+        ][row];
         let response = Plot::new(("generalised", row))
             .height(height)
             .legend(Legend::default())
@@ -77,14 +80,15 @@ pub fn show(ui: &mut egui::Ui, g: &GenView, own: Option<OwnRun<'_>>, t: f64) -> 
                         1 => &o.v,
                         _ => &o.a,
                     };
+                    let from = if row == 0 { o.start[ax] } else { 0.0 };
                     plot.line(
-                        Line::new(format!("new {name}"), series(values, ax, at, |v| v))
+                        Line::new(format!("new {name}"), series(values, ax, at, |v| v - from))
                             .color(*colour)
                             .width(2.0),
                     );
                     if row == 0 {
                         plot.hline(
-                            HLine::new("", o.goal[ax])
+                            HLine::new("", o.goal[ax] - from)
                                 .color(colour.gamma_multiply(0.6))
                                 .style(LineStyle::dotted_dense()),
                         );
@@ -92,7 +96,9 @@ pub fn show(ui: &mut egui::Ui, g: &GenView, own: Option<OwnRun<'_>>, t: f64) -> 
                             for sign in [-1.0, 1.0] {
                                 let points: PlotPoints<'static> = (0..n)
                                     .step_by(n.div_ceil(MAX_POINTS).max(1))
-                                    .map(|k| [o.t[k], o.unit.y[k][ax] + sign * o.band[k][ax]])
+                                    .map(|k| {
+                                        [o.t[k], o.unit.y[k][ax] - from + sign * o.band[k][ax]]
+                                    })
                                     .collect();
                                 plot.line(
                                     Line::new("", points)
@@ -106,7 +112,7 @@ pub fn show(ui: &mut egui::Ui, g: &GenView, own: Option<OwnRun<'_>>, t: f64) -> 
                         let m = own.rollout.y.len();
                         let own_t = |k: usize| own.duration_s * k as f64 / (m.max(2) - 1) as f64;
                         let (values, scale, shift) = match row {
-                            0 => (&own.rollout.y, 1.0, own.origin[ax]),
+                            0 => (&own.rollout.y, 1.0, 0.0),
                             1 => (&own.rollout.v, 1.0 / own.duration_s, 0.0),
                             _ => (&own.rollout.a, 1.0 / (own.duration_s * own.duration_s), 0.0),
                         };

@@ -87,36 +87,87 @@ impl GenKey {
     }
 }
 
+/// What the primitive depends on: a drag of the goal keeps it and only
+/// rolls it out again.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct PrimitiveKey {
+    model: u64,
+    dm: u64,
+    km: u64,
+    source: GenSource,
+    /// A skill's members are mapped by the scaling mode; a demo's are not.
+    scaling: Option<Scaling>,
+}
+
+impl GenKey {
+    fn primitive(&self) -> PrimitiveKey {
+        PrimitiveKey {
+            model: self.model,
+            dm: self.dm,
+            km: self.km,
+            source: self.source,
+            scaling: (self.source == GenSource::Skill).then_some(self.scaling),
+        }
+    }
+}
+
+type Fitted = Result<(Primitive, Option<Vec<[f64; 3]>>), String>;
+
 /// The stage's state.
 pub(super) struct GenState {
     pub(super) key: GenKey,
     pub(super) result: Result<GenView, String>,
+    fitted: (PrimitiveKey, Fitted),
 }
 
-/// Runs `spec` on `model` at `(dm, km)`; errors are sentences for the panel.
-pub(super) fn compute(
-    model: &Model,
-    (dm, km): (f64, f64),
-    spec: &GeneraliseSpec,
-) -> Result<GenView, String> {
-    let (primitive, forcing_sd) = match spec.source {
-        GenSource::Demo(i) => (
+impl GenState {
+    /// The run for `key`, reusing `previous`'s primitive when only the
+    /// target changed.
+    pub(super) fn compute(
+        previous: Option<Self>,
+        key: GenKey,
+        model: &Model,
+        (dm, km): (f64, f64),
+        spec: &GeneraliseSpec,
+    ) -> Self {
+        let pkey = key.primitive();
+        let fitted = match previous {
+            Some(p) if p.fitted.0 == pkey => p.fitted.1,
+            _ => fit(model, (dm, km), spec),
+        };
+        let result = match &fitted {
+            Ok((primitive, forcing_sd)) => primitive
+                .rollout(&spec.target)
+                .map(|out| GenView {
+                    primitive: primitive.clone(),
+                    out,
+                    forcing_sd: forcing_sd.clone(),
+                })
+                .map_err(|e| match e {
+                    dmpscope_core::Error::InvalidSetting(m) => m,
+                    other => other.to_string(),
+                }),
+            Err(e) => Err(e.clone()),
+        };
+        Self {
+            key,
+            result,
+            fitted: (pkey, fitted),
+        }
+    }
+}
+
+/// The demo's primitive, or the skill's with its forcing SD.
+fn fit(model: &Model, (dm, km): (f64, f64), spec: &GeneraliseSpec) -> Fitted {
+    match spec.source {
+        GenSource::Demo(i) => Ok((
             Primitive::of_demo(model, i, dm, km).map_err(|e| e.to_string())?,
             None,
-        ),
+        )),
         GenSource::Skill => {
             let skill =
                 Skill::new(model, dm, km, spec.target.scaling).map_err(|e| e.to_string())?;
-            (skill.primitive, Some(skill.forcing_sd))
+            Ok((skill.primitive, Some(skill.forcing_sd)))
         }
-    };
-    let out = primitive.rollout(&spec.target).map_err(|e| match e {
-        dmpscope_core::Error::InvalidSetting(m) => m,
-        other => other.to_string(),
-    })?;
-    Ok(GenView {
-        primitive,
-        out,
-        forcing_sd,
-    })
+    }
 }

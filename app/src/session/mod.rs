@@ -253,10 +253,14 @@ impl Session {
         let key = generalise::GenKey::new(version, settings.op, &spec);
         if self.generalised.as_ref().is_none_or(|g| g.key != key) {
             self.runs.generalised += 1;
-            self.generalised = Some(generalise::GenState {
+            let previous = self.generalised.take();
+            self.generalised = Some(generalise::GenState::compute(
+                previous,
                 key,
-                result: generalise::compute(&model, settings.op, &spec),
-            });
+                &model,
+                settings.op,
+                &spec,
+            ));
         }
     }
 

@@ -7,7 +7,7 @@
 use dmpscope_core::{Model, Scaling, Target};
 use eframe::egui::{self, Color32};
 
-use super::super::commands::Command;
+use super::super::commands::{Command, Export};
 use super::super::view_state::ViewState;
 use crate::session::{Command as SessionCommand, GenSource, GeneraliseSpec, Session};
 
@@ -187,6 +187,19 @@ pub fn generalise_ui(
         }
         None => {}
     }
+    ui.horizontal_wrapped(|ui| {
+        let ok = session.generalised().is_some_and(|g| g.is_ok());
+        if ui
+            .add_enabled(ok, egui::Button::new("Export for a robot (JSON)…"))
+            .on_hover_text(
+                "The DMP at this target with its equations and a golden rollout \
+                 (docs/export.md; examples/run_dmp.py runs it)",
+            )
+            .clicked()
+        {
+            out.push(Command::Export(Export::Dmp));
+        }
+    });
     ui.weak("3D view: drag the white goal ring or start disc (Shift: height)");
     if spec != before {
         out.push(SessionCommand::SetGeneralise(Some(spec)).into());

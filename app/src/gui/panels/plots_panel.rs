@@ -89,7 +89,6 @@ fn generalised_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) -
             let d = model.demos().get(i)?;
             Some(gen_plots::OwnRun {
                 rollout: session.paths().get(i)?,
-                origin: d.p0,
                 duration_s: d.duration_s,
             })
         });

@@ -99,4 +99,11 @@ fn export_menu(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Command>) {
     item(ui, model, "Gains and Table I (JSON)", Export::ReportJson);
     item(ui, model, "Table I (CSV)", Export::TableCsv);
     item(ui, model, "Table I (Markdown)", Export::TableMarkdown);
+    let run = session.generalised().is_some_and(|g| g.is_ok());
+    item(
+        ui,
+        run,
+        "DMP at the new target (JSON for a controller)",
+        Export::Dmp,
+    );
 }
