@@ -258,6 +258,12 @@ impl eframe::App for DmpApp {
         if let Some(log) = &mut self.frame_log {
             // Only frames after the landscape is complete: the drag.
             if self.session.landscape_complete() {
+                log.handles(
+                    self.view
+                        .view3d
+                        .handles_on_screen()
+                        .map(|h| h.map(|p| [p.x, p.y])),
+                );
                 log.frame(frame.info().cpu_usage);
             } else {
                 log.reset();

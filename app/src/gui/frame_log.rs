@@ -1,7 +1,8 @@
 //! Frame timing for measurements: with `DMPSCOPE_FRAME_LOG=path` the app
 //! records the interval between frames and egui's CPU time per frame and
 //! rewrites a summary (medians, 95th percentiles, maxima) to `path` every
-//! 10 frames.
+//! 10 frames, with where the 3D view drew the new target's start and goal
+//! (so `tests/frame_time.sh` can drag them).
 
 use std::path::PathBuf;
 use web_time::Instant;
@@ -12,6 +13,7 @@ pub struct FrameLog {
     last: Option<Instant>,
     intervals_ms: Vec<f64>,
     cpu_ms: Vec<f64>,
+    handles: Option<[[f32; 2]; 2]>,
 }
 
 impl FrameLog {
@@ -23,7 +25,13 @@ impl FrameLog {
             last: None,
             intervals_ms: Vec::new(),
             cpu_ms: Vec::new(),
+            handles: None,
         })
+    }
+
+    /// Where the new target's start and goal were drawn, screen points.
+    pub fn handles(&mut self, at: Option<[[f32; 2]; 2]>) {
+        self.handles = at;
     }
 
     /// Records a frame; `cpu_s` is eframe's CPU time of the previous frame.
@@ -38,12 +46,18 @@ impl FrameLog {
             self.cpu_ms.push(f64::from(cpu) * 1e3);
         }
         if self.intervals_ms.len() % 10 == 9 {
-            let text = format!(
+            let mut text = format!(
                 "frames {}\ninterval_ms {}\ncpu_ms {}\n",
                 self.intervals_ms.len(),
                 summary(&self.intervals_ms),
                 summary(&self.cpu_ms)
             );
+            if let Some([s, g]) = self.handles {
+                text.push_str(&format!(
+                    "handles start {:.0} {:.0} goal {:.0} {:.0}\n",
+                    s[0], s[1], g[0], g[1]
+                ));
+            }
             let _ = std::fs::write(&self.path, text);
         }
     }
