@@ -280,3 +280,30 @@ fn per_axis_scaling_warns_about_an_axis_that_barely_moves() {
         .expect("moved");
     assert!(out.warnings.is_empty(), "{:?}", out.warnings);
 }
+
+#[test]
+fn an_export_never_holds_nan() {
+    use dmpscope_core::io::dmp_doc::{DocContext, dmp_document};
+    let m = model();
+    // Gains so large that the integration overflows.
+    let p = Primitive::of_demo(&m, 0, 1e300, 1e300).expect("demo");
+    let out = p.rollout(&Target::default()).expect("rollout");
+    assert!(out.unit.y.iter().flatten().any(|v| !v.is_finite()));
+    let ctx = || DocContext {
+        demos: vec![p.name.clone()],
+        source: "demo",
+        basis: (&m.basis().centres, &m.basis().widths),
+        frame_id: "world".into(),
+        band: None,
+        scaling: Scaling::Paper,
+    };
+    let err = dmp_document(&p, &out, ctx())
+        .expect_err("refused")
+        .to_string();
+    assert!(err.contains("non-finite number at rollout."), "{err}");
+    // At sane gains the same document is written.
+    let p = Primitive::of_demo(&m, 0, DM, KM).expect("demo");
+    let out = p.rollout(&Target::default()).expect("rollout");
+    let doc = dmp_document(&p, &out, ctx()).expect("written");
+    assert_eq!(doc.rollout.y[0], p.start_abs());
+}
