@@ -353,7 +353,7 @@ impl Primitive {
     /// The diagonal of the bounding box of the start, the goal and the
     /// path at its own target: the motion's extent, metres.
     fn extent(&self) -> f64 {
-        let path = self.integrate(self.y0, self.goal, &Mapping::IDENTITY, &self.fdt2, self.v0);
+        let path = self.integrate(self.y0, self.goal, &self.fdt2, self.v0).y;
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
         for p in path.iter().chain([&self.goal]) {
@@ -431,7 +431,7 @@ impl Primitive {
             self.fdt2.iter().map(|f| mapping.apply(*f)).collect()
         };
         let v0 = mapping.apply(self.v0);
-        let mut unit = self.integrate_full(y0, g, &fdt2, v0);
+        let mut unit = self.integrate(y0, g, &fdt2, v0);
         for p in &mut unit.y {
             *p = std::array::from_fn(|a| p[a] + self.origin[a]);
         }
@@ -483,7 +483,8 @@ impl Primitive {
         }
         let mut sum2 = vec![[0.0; 3]; mean.len()];
         for (fdt2, v0) in &self.members {
-            let path = self.integrate(y0, g, mapping, fdt2, *v0);
+            let mapped: Vec<[f64; 3]> = fdt2.iter().map(|f| mapping.apply(*f)).collect();
+            let path = self.integrate(y0, g, &mapped, mapping.apply(*v0)).y;
             for (k, p) in path.iter().enumerate() {
                 for a in 0..3 {
                     let e = p[a] + self.origin[a] - mean[k][a];
@@ -496,45 +497,9 @@ impl Primitive {
             .collect()
     }
 
-    /// Positions (relative) of a mapped forcing term rolled from `y0` to `g`.
-    fn integrate(
-        &self,
-        y0: [f64; 3],
-        g: [f64; 3],
-        mapping: &Mapping,
-        fdt2: &[[f64; 3]],
-        v0: [f64; 3],
-    ) -> Vec<[f64; 3]> {
-        let dt = self.dt();
-        let (ddt, kdt2) = (self.dm * dt, self.km * dt * dt);
-        let mut z: [f64; 3] = std::array::from_fn(|a| y0[a] - g[a]);
-        let mut u = mapping.apply(v0).map(|v| v * dt);
-        let mut out = Vec::with_capacity(fdt2.len());
-        for f in fdt2 {
-            out.push(std::array::from_fn(|a| z[a] + g[a]));
-            let f = if *mapping == Mapping::IDENTITY {
-                *f
-            } else {
-                mapping.apply(*f)
-            };
-            for a in 0..3 {
-                let du = f[a] - kdt2 * z[a] - ddt * u[a];
-                u[a] += du;
-                z[a] += u[a];
-            }
-        }
-        out
-    }
-
     /// The full unit-time rollout (relative positions) of an already
     /// mapped forcing term: the arithmetic of [`Model::rollout`].
-    fn integrate_full(
-        &self,
-        y0: [f64; 3],
-        g: [f64; 3],
-        fdt2: &[[f64; 3]],
-        v0: [f64; 3],
-    ) -> Rollout {
+    fn integrate(&self, y0: [f64; 3], g: [f64; 3], fdt2: &[[f64; 3]], v0: [f64; 3]) -> Rollout {
         let n = fdt2.len();
         let dt = self.dt();
         let dt2 = dt * dt;

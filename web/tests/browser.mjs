@@ -246,6 +246,17 @@ try {
   check(stats.colours > 200 && stats.variance > 100, `the screenshot is not blank (${stats.colours} colours)`);
   check(errors.length === 0, `no console errors${errors.length ? ": " + errors.join(" | ") : ""}`);
 
+  // The New target tab (right panel) and its "Run the DMP at a new target"
+  // box: the selected demo runs at its own target, ending at its goal.
+  await click(1190, 37);
+  await click(916, 117);
+  const moved = await until("the run at a new target", (s) => s.generalised?.name, 10000);
+  check(!moved.generalised.error && moved.generalised.final_error < 0.01,
+    `the run at a new target ends at its goal (${JSON.stringify(moved.generalised)})`);
+  await page.screenshot({ path: join(out, "new_target.png") });
+  await click(916, 69); // the box again, now at the top of the tab: off
+  await until("the run switched off", (s) => s.generalised === null, 10000);
+
   // Settings persist in the browser's storage: a preset chosen, the page
   // reloaded, the operating point is still there.
   await click(270, 395); // "Hrstc4" in the side panel (below Demos, messages and the Recording row)

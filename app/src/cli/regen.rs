@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use dmpscope_core::io::dmp_doc::{DocContext, dmp_document};
 use dmpscope_core::io::export::{
-    ExportPath, ROLE_REGENERATED, TrajectoryExport, topic_safe, write_export_mcap,
+    ExportPath, ROLE_REGENERATED, TopicNames, TrajectoryExport, demo_paths, write_export_mcap,
 };
 use dmpscope_core::io::ros_traj::TimedPath;
 use dmpscope_core::text::{pad_right, width};
@@ -319,48 +319,15 @@ fn write_mcap(
             .and_then(|r| r.stamps_ns.iter().min().copied())
             .unwrap_or(0)
     };
-    let mut paths = Vec::new();
-    let mut taken = std::collections::HashSet::new();
-    let mut unique = |name: &str| {
-        let base = topic_safe(name);
-        let mut short = base.clone();
-        let mut k = 1;
-        while !taken.insert(short.clone()) {
-            k += 1;
-            short = format!("{base}_{k}");
-        }
-        short
-    };
-    let mut shorts = Vec::new();
-    for (i, demo) in model.demos().iter().enumerate() {
-        let start = first_stamp(i);
-        let n = demo.len();
-        let short = unique(&demo.name);
-        shorts.push(short.clone());
-        paths.push(ExportPath {
-            topic: format!("/demo/{short}"),
-            name: demo.name.clone(),
-            role: "demonstration",
-            samples: demo
-                .y_raw
-                .iter()
-                .enumerate()
-                .map(|(k, p)| {
-                    let t = demo.duration_s * k as f64 / (n - 1) as f64;
-                    (
-                        start + (t * 1e9).round() as i64,
-                        std::array::from_fn(|a| p[a] + demo.p0[a]),
-                    )
-                })
-                .collect(),
-        });
-    }
+    let firsts: Vec<i64> = (0..model.demos().len()).map(first_stamp).collect();
+    let mut names = TopicNames::default();
+    let (mut paths, shorts) = demo_paths(model, &firsts, &mut names);
     let mut trajectories = Vec::new();
     for r in runs {
         let start = first_stamp(r.demo.unwrap_or(0));
         let short = match r.demo {
             Some(i) => shorts[i].clone(),
-            None => unique(&r.primitive.name),
+            None => names.unique(&r.primitive.name),
         };
         paths.push(ExportPath {
             topic: format!("/regen/{short}"),

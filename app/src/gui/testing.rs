@@ -36,7 +36,7 @@ impl DmpApp {
     /// What the browser tests read: demos, operating point, optimum,
     /// landscape progress, a checksum of the regenerated paths at the
     /// operating point, Table I's rows, frame and slice timings, messages,
-    /// the diagnostics so far.
+    /// the diagnostics so far, the run at a new target.
     pub fn test_state(&self, ctx: &egui::Context) -> serde_json::Value {
         let session = self.session();
         let (dm, km) = self.settings.op;
@@ -91,6 +91,18 @@ impl DmpApp {
                 "longest_slice_ms": session.diagnostics_page_time().longest_ms,
             })),
             "repaint_causes": causes,
+            "generalised": session.generalised().map(|g| match g {
+                Ok(g) => serde_json::json!({
+                    "name": g.primitive.name,
+                    "start": g.out.start,
+                    "goal": g.out.goal,
+                    "duration_s": g.out.duration_s,
+                    "peak_speed": g.out.peak_speed,
+                    "a_peak": g.out.a_peak,
+                    "final_error": g.out.final_error,
+                }),
+                Err(e) => serde_json::json!({ "error": e }),
+            }),
         })
     }
 }

@@ -41,31 +41,44 @@ pub struct ExportPath {
     pub samples: Vec<(i64, [f64; 3])>,
 }
 
-/// Every demo's target path and its regeneration at `(dm, km)`, absolute
-/// positions, stamped from the demo's first recorded stamp.
-pub fn regenerated_paths(
-    model: &Model,
-    first_stamps_ns: &[i64],
-    dm: f64,
-    km: f64,
-) -> Vec<ExportPath> {
-    let mut out = Vec::new();
-    let mut taken = std::collections::HashSet::new();
-    for (i, demo) in model.demos().iter().enumerate() {
-        let start = first_stamps_ns.get(i).copied().unwrap_or(0);
-        let n = demo.len();
-        let stamp =
-            |k: usize| start + (demo.duration_s * k as f64 / (n - 1) as f64 * 1e9).round() as i64;
-        let absolute = |p: [f64; 3]| std::array::from_fn(|ax| p[ax] + demo.p0[ax]);
-        // Every demo on its own topic, whatever its name reduces to.
-        let base = topic_safe(&demo.name);
+/// Hands out topic segments for names, each different from the ones
+/// before (`name`, `name_2`, ...), whatever the names reduce to.
+#[derive(Debug, Default)]
+pub struct TopicNames(std::collections::HashSet<String>);
+
+impl TopicNames {
+    /// A segment for `name` that no earlier call returned.
+    pub fn unique(&mut self, name: &str) -> String {
+        let base = topic_safe(name);
         let mut short = base.clone();
         let mut n = 1;
-        while !taken.insert(short.clone()) {
+        while !self.0.insert(short.clone()) {
             n += 1;
             short = format!("{base}_{n}");
         }
-        let rollout = model.rollout(i, dm, km);
+        short
+    }
+}
+
+/// The stamp of sample `k` of `n` over `duration_s` from `start_ns`.
+fn stamp_of(start_ns: i64, duration_s: f64, k: usize, n: usize) -> i64 {
+    start_ns + (duration_s * k as f64 / (n.max(2) - 1) as f64 * 1e9).round() as i64
+}
+
+/// Every demo's target path on `/demo/<segment>`, absolute positions,
+/// stamped from the demo's first recorded stamp; with each demo's topic
+/// segment (from `names`).
+pub fn demo_paths(
+    model: &Model,
+    first_stamps_ns: &[i64],
+    names: &mut TopicNames,
+) -> (Vec<ExportPath>, Vec<String>) {
+    let mut out = Vec::new();
+    let mut shorts = Vec::new();
+    for (i, demo) in model.demos().iter().enumerate() {
+        let start = first_stamps_ns.get(i).copied().unwrap_or(0);
+        let n = demo.len();
+        let short = names.unique(&demo.name);
         out.push(ExportPath {
             topic: format!("/demo/{short}"),
             name: demo.name.clone(),
@@ -74,9 +87,31 @@ pub fn regenerated_paths(
                 .y_raw
                 .iter()
                 .enumerate()
-                .map(|(k, p)| (stamp(k), absolute(*p)))
+                .map(|(k, p)| {
+                    let p = std::array::from_fn(|ax| p[ax] + demo.p0[ax]);
+                    (stamp_of(start, demo.duration_s, k, n), p)
+                })
                 .collect(),
         });
+        shorts.push(short);
+    }
+    (out, shorts)
+}
+
+/// Every demo's target path and its regeneration at `(dm, km)` on
+/// `/regen/<segment>`, absolute positions, stamped from the demo's first
+/// recorded stamp.
+pub fn regenerated_paths(
+    model: &Model,
+    first_stamps_ns: &[i64],
+    dm: f64,
+    km: f64,
+) -> Vec<ExportPath> {
+    let (mut out, shorts) = demo_paths(model, first_stamps_ns, &mut TopicNames::default());
+    for (i, (demo, short)) in model.demos().iter().zip(shorts).enumerate() {
+        let start = first_stamps_ns.get(i).copied().unwrap_or(0);
+        let n = demo.len();
+        let rollout = model.rollout(i, dm, km);
         out.push(ExportPath {
             topic: format!("/regen/{short}"),
             name: demo.name.clone(),
@@ -85,7 +120,10 @@ pub fn regenerated_paths(
                 .y
                 .iter()
                 .enumerate()
-                .map(|(k, p)| (stamp(k), absolute(*p)))
+                .map(|(k, p)| {
+                    let p = std::array::from_fn(|ax| p[ax] + demo.p0[ax]);
+                    (stamp_of(start, demo.duration_s, k, n), p)
+                })
                 .collect(),
         });
     }
