@@ -178,6 +178,11 @@ fn smallest_rotation(a: [f64; 3], b: [f64; 3]) -> Option<[[f64; 3]; 3]> {
     ])
 }
 
+/// The shortest duration a target may ask for, seconds.
+pub const MIN_DURATION_S: f64 = 1e-3;
+/// The longest duration a target may ask for, seconds.
+pub const MAX_DURATION_S: f64 = 1e6;
+
 /// Below this `|a x b|` with `a . b > 0`, the directions are the same.
 const PARALLEL_SIN: f64 = 1e-15;
 /// Below this `|a x b|` with `a . b <= 0`, the directions are opposite.
@@ -385,6 +390,12 @@ impl Primitive {
                 "the duration (--duration) must be a positive number of seconds, got {duration}"
             )));
         }
+        if !(MIN_DURATION_S..=MAX_DURATION_S).contains(&duration) {
+            return Err(Error::InvalidSetting(format!(
+                "the duration (--duration) must be between {MIN_DURATION_S} s and \
+                 {MAX_DURATION_S} s, got {duration}"
+            )));
+        }
         if start == goal {
             return Err(Error::InvalidSetting(format!(
                 "the goal (--goal) equals the start (--start), {start:?}: a point-to-point \
@@ -400,14 +411,23 @@ impl Primitive {
             Some(s) => std::array::from_fn(|a| s[a] - self.origin[a]),
             None => self.goal,
         };
-        let from: [f64; 3] = std::array::from_fn(|a| self.goal[a] - self.y0[a]);
-        let to: [f64; 3] = std::array::from_fn(|a| g[a] - y0[a]);
-        let mapping = Mapping::between(from, to, target.scaling)?;
+        // The map from the absolute numbers an export holds (docs/export.md),
+        // so a runner computes the same one; at the defaults from == to.
+        let (own_start, own_goal) = (self.start_abs(), self.goal_abs());
+        let from: [f64; 3] = std::array::from_fn(|a| own_goal[a] - own_start[a]);
+        let to: [f64; 3] = std::array::from_fn(|a| goal[a] - start[a]);
+        let mapping = Mapping::between(from, to, target.scaling).map_err(|e| match e {
+            Error::InvalidSetting(m) => Error::InvalidSetting(format!("{}: {m}", self.name)),
+            other => other,
+        })?;
         let mut warnings = Vec::new();
-        if target.scaling == Scaling::Paper && mapping != Mapping::IDENTITY {
+        if let (Scaling::Paper, Mapping::Diagonal(factors)) = (target.scaling, mapping) {
             let extent = self.extent();
             for (a, axis) in ["x", "y", "z"].iter().enumerate() {
-                if from[a].abs() < 0.05 * extent {
+                // Only where the factor does something.
+                if from[a].abs() < 0.05 * extent && (factors[a] - 1.0).abs() > 1e-6
+                    || from[a].abs() < 1e-9 && to[a].abs() >= 1e-9
+                {
                     warnings.push(format!(
                         "{}: start and goal differ by {:.1} mm on {axis}, under 5 % of the \
                          motion's {:.0} mm; per-axis scaling {} there (try --scaling frame)",
@@ -415,9 +435,9 @@ impl Primitive {
                         from[a].abs() * 1e3,
                         extent * 1e3,
                         if from[a].abs() < 1e-9 {
-                            "leaves that axis's forcing term unscaled"
+                            "leaves that axis's forcing term unscaled".to_owned()
                         } else {
-                            "multiplies that axis's forcing term by a large factor"
+                            format!("multiplies that axis's forcing term by {:.3}", factors[a])
                         }
                     ));
                 }
@@ -444,6 +464,14 @@ impl Primitive {
         let v: Vec<[f64; 3]> = unit.v.iter().map(|v| v.map(|c| c / duration)).collect();
         let dur2 = duration * duration;
         let a: Vec<[f64; 3]> = unit.a.iter().map(|a| a.map(|c| c / dur2)).collect();
+        let finite = |rows: &[[f64; 3]]| rows.iter().flatten().all(|c| c.is_finite());
+        if !(finite(&unit.y) && finite(&v) && finite(&a) && finite(&band)) {
+            return Err(Error::InvalidSetting(format!(
+                "{}: the motion diverges at D/M {} and K/M {} over {duration} s (its numbers \
+                 overflow): nothing to run or export",
+                self.name, self.dm, self.km
+            )));
+        }
         let peak_speed = v.iter().map(|v| norm(*v)).fold(0.0, f64::max);
         let a_peak = a.iter().map(|a| norm(*a)).fold(0.0, f64::max);
         let last = unit.y[n - 1];

@@ -55,7 +55,8 @@ impl Skill {
         };
         let origin = mean3(&|p| p.start_abs());
         let displacement = mean3(&|p| std::array::from_fn(|a| p.goal[a] - p.y0[a]));
-        if scaling == Scaling::Frame && displacement.iter().all(|v| v.abs() < 1e-9) {
+        let length = displacement.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if scaling == Scaling::Frame && length < 1e-9 {
             return Err(Error::InvalidSetting(
                 "the demos' mean displacement is zero (they go opposite ways): a \
                  frame-independent skill has no direction; use per-axis scaling"

@@ -188,7 +188,7 @@ fn bad_targets_name_the_argument() {
         e.contains("the goal (--goal) equals the start (--start)"),
         "{e}"
     );
-    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e-6, 1e10] {
         let e = err(Target {
             duration_s: Some(bad),
             ..Target::default()
@@ -274,10 +274,18 @@ fn per_axis_scaling_warns_about_an_axis_that_barely_moves() {
 fn an_export_never_holds_nan() {
     use dmpscope_core::io::dmp_doc::{DocContext, dmp_document};
     let m = model();
-    // Gains so large that the integration overflows.
+    // Gains so large that the integration overflows: refused, so no export
+    // (JSON, CSV or MCAP) and no view ever gets its numbers.
     let p = Primitive::of_demo(&m, 0, 1e300, 1e300).expect("demo");
-    let out = p.rollout(&Target::default()).expect("rollout");
-    assert!(out.unit.y.iter().flatten().any(|v| !v.is_finite()));
+    let err = p
+        .rollout(&Target::default())
+        .expect_err("diverges")
+        .to_string();
+    assert!(err.contains("the motion diverges"), "{err}");
+    let p = Primitive::of_demo(&m, 0, DM, KM).expect("demo");
+    let mut out = p.rollout(&Target::default()).expect("rollout");
+    // A document holding a non-finite number is refused too.
+    out.a[500][1] = f64::NAN;
     let ctx = || DocContext {
         demos: vec![p.name.clone()],
         source: "demo",

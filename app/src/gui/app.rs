@@ -277,6 +277,18 @@ impl eframe::App for DmpApp {
         }
         self.session.update(&self.settings);
         self.view.follow(&self.session);
+        // A run at a new target of a demo follows the selected demo,
+        // whichever tab is open (a new demo starts at its own target).
+        if let Some(spec) = self.session.generalise_spec()
+            && let session::GenSource::Demo(i) = spec.source
+            && i != self.view.selected
+        {
+            let mut next = session::GeneraliseSpec::demo(self.view.selected);
+            next.target.scaling = spec.target.scaling;
+            self.session
+                .apply(session::Command::SetGeneralise(Some(next)));
+            self.session.update(&self.settings);
+        }
         #[cfg(all(target_arch = "wasm32", feature = "testing"))]
         crate::web::publish_state(self.test_state(&ctx).to_string());
 

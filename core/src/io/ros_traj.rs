@@ -82,10 +82,16 @@ pub struct TimedPath {
     pub a: Vec<[f64; 3]>,
 }
 
+/// Seconds and nanoseconds of a stamp, saturated together to what an
+/// `int32` of seconds holds.
 fn split_ns(ns: i64) -> (i32, u32) {
     let sec = ns.div_euclid(1_000_000_000);
     let nanosec = ns.rem_euclid(1_000_000_000) as u32;
-    (i32::try_from(sec).unwrap_or(i32::MAX), nanosec)
+    match i32::try_from(sec) {
+        Ok(sec) => (sec, nanosec),
+        Err(_) if sec > 0 => (i32::MAX, 999_999_999),
+        Err(_) => (i32::MIN, 0),
+    }
 }
 
 fn seconds_ns(t: f64) -> i64 {

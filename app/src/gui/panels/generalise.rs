@@ -145,6 +145,7 @@ pub fn generalise_ui(
                     egui::DragValue::new(&mut d)
                         .speed(0.01)
                         .range(0.05..=120.0)
+                        .clamp_existing_to_range(false)
                         .fixed_decimals(2)
                         .suffix(" s"),
                 )
