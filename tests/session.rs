@@ -465,7 +465,7 @@ fn a_new_target_recomputes_only_the_generalised_run() {
     step(&mut session, &settings);
     let g = session.generalised().expect("on").expect("runs");
     assert_eq!(g.out.band.len(), 1001);
-    assert_eq!(g.forcing_sd.as_ref().map(Vec::len), Some(1001));
+    assert_eq!(g.forcing_sd.as_ref().map(|sd| sd.len()), Some(1001));
     assert!(g.primitive.name.contains("10 demos"));
     // A new model keeps the target and runs it again.
     session.apply(Command::SetIncluded {

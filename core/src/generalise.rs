@@ -9,34 +9,10 @@
 //! primitive's own start, goal and duration (the target's defaults) the two
 //! give the same bits.
 
-use serde::{Deserialize, Serialize};
-
 use crate::error::{Error, Result};
+use crate::mapping::norm;
+pub use crate::mapping::{Mapping, Scaling};
 use crate::model::{Model, Rollout};
-
-/// How the forcing term follows a moved goal (method.md section 10).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Scaling {
-    /// The paper's per-axis factor `(g'_a - y0'_a) / (g_a - y0_a)`, left at
-    /// 1 where `|g_a - y0_a| < 1e-9`.
-    #[default]
-    Paper,
-    /// Frame-independent (Koutras and Doulgeri, 2020): the smallest rotation
-    /// taking `g - y0` onto the direction of `g' - y0'`, times the ratio of
-    /// their lengths.
-    Frame,
-}
-
-impl Scaling {
-    /// The name used on the command line and in exports.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Paper => "paper",
-            Self::Frame => "frame",
-        }
-    }
-}
 
 /// Where and how long to run a primitive. `None` keeps the primitive's own.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -51,142 +27,10 @@ pub struct Target {
     pub scaling: Scaling,
 }
 
-/// A linear map of forcing terms and velocities from one displacement to
-/// another. A diagonal is kept apart so that a factor of exactly 1 changes
-/// no bit.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Mapping {
-    /// Per-axis factors.
-    Diagonal([f64; 3]),
-    /// A full matrix, row-major.
-    Matrix([[f64; 3]; 3]),
-}
-
-impl Mapping {
-    /// The identity.
-    pub const IDENTITY: Self = Self::Diagonal([1.0; 3]);
-
-    /// Applies the map to a vector.
-    pub fn apply(&self, v: [f64; 3]) -> [f64; 3] {
-        match self {
-            Self::Diagonal(d) => std::array::from_fn(|a| d[a] * v[a]),
-            Self::Matrix(m) => {
-                std::array::from_fn(|a| m[a][0] * v[0] + m[a][1] * v[1] + m[a][2] * v[2])
-            }
-        }
-    }
-
-    /// The map as a row-major matrix.
-    pub fn matrix(&self) -> [[f64; 3]; 3] {
-        match self {
-            Self::Diagonal(d) => {
-                std::array::from_fn(|r| std::array::from_fn(|c| if r == c { d[r] } else { 0.0 }))
-            }
-            Self::Matrix(m) => *m,
-        }
-    }
-
-    /// The map taking displacement `from` (`g - y0`) to `to` (`g' - y0'`)
-    /// under `scaling`. Frame-independent scaling needs `from` non-zero.
-    pub fn between(from: [f64; 3], to: [f64; 3], scaling: Scaling) -> Result<Self> {
-        if from == to {
-            return Ok(Self::IDENTITY);
-        }
-        match scaling {
-            Scaling::Paper => Ok(Self::Diagonal(std::array::from_fn(|a| {
-                if from[a].abs() < 1e-9 {
-                    1.0
-                } else {
-                    to[a] / from[a]
-                }
-            }))),
-            Scaling::Frame => {
-                let (lf, lt) = (norm(from), norm(to));
-                if lf < 1e-9 {
-                    return Err(Error::InvalidSetting(
-                        "frame-independent scaling needs a motion whose goal differs from its \
-                         start; this one ends where it starts (use per-axis scaling)"
-                            .into(),
-                    ));
-                }
-                let s = lt / lf;
-                let r = smallest_rotation(from.map(|v| v / lf), to.map(|v| v / lt.max(1e-300)));
-                Ok(match r {
-                    None => Self::Diagonal([s; 3]),
-                    Some(r) => Self::Matrix(r.map(|row| row.map(|v| s * v))),
-                })
-            }
-        }
-    }
-}
-
-fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// The smallest rotation taking unit vector `a` to unit vector `b`
-/// (Rodrigues), `None` when they are parallel (the identity). Vectors
-/// within 1e-6 of opposite turn by exactly pi about an axis perpendicular
-/// to `a`: near there the smallest rotation's axis depends on the last bits
-/// of the inputs, so two implementations would not agree.
-fn smallest_rotation(a: [f64; 3], b: [f64; 3]) -> Option<[[f64; 3]; 3]> {
-    let c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let axis = cross(a, b);
-    let sin = norm(axis);
-    if sin < PARALLEL_SIN && c > 0.0 {
-        return None;
-    }
-    let (k, s, v) = if sin < OPPOSITE_SIN && c <= 0.0 {
-        // Opposite: any axis perpendicular to `a`; take the cross product
-        // with the (first) coordinate axis least aligned with it.
-        let least = (0..3)
-            .min_by(|&i, &j| a[i].abs().total_cmp(&a[j].abs()))
-            .unwrap_or(0);
-        let mut e = [0.0; 3];
-        e[least] = 1.0;
-        let p = cross(a, e);
-        let lp = norm(p);
-        (p.map(|v| v / lp), 0.0, 2.0)
-    } else {
-        let angle = sin.atan2(c);
-        (axis.map(|v| v / sin), angle.sin(), 1.0 - angle.cos())
-    };
-    Some([
-        [
-            1.0 - v * (k[1] * k[1] + k[2] * k[2]),
-            v * k[0] * k[1] - s * k[2],
-            v * k[0] * k[2] + s * k[1],
-        ],
-        [
-            v * k[0] * k[1] + s * k[2],
-            1.0 - v * (k[0] * k[0] + k[2] * k[2]),
-            v * k[1] * k[2] - s * k[0],
-        ],
-        [
-            v * k[0] * k[2] - s * k[1],
-            v * k[1] * k[2] + s * k[0],
-            1.0 - v * (k[0] * k[0] + k[1] * k[1]),
-        ],
-    ])
-}
-
 /// The shortest duration a target may ask for, seconds.
 pub const MIN_DURATION_S: f64 = 1e-3;
 /// The longest duration a target may ask for, seconds.
 pub const MAX_DURATION_S: f64 = 1e6;
-
-/// Below this `|a x b|` with `a . b > 0`, the directions are the same.
-const PARALLEL_SIN: f64 = 1e-15;
-/// Below this `|a x b|` with `a . b <= 0`, the directions are opposite.
-const OPPOSITE_SIN: f64 = 1e-6;
 
 /// A forcing term at one gain pair with the motion it was fitted to.
 #[derive(Clone, Debug, PartialEq)]
@@ -212,10 +56,13 @@ pub struct Primitive {
     /// LWR weights per axis of the forcing term.
     pub weights: [Vec<f64>; 3],
     /// The forcing term on the grid, times `dt^2` (the integration's form).
-    fdt2: Vec<[f64; 3]>,
+    pub(crate) fdt2: Vec<[f64; 3]>,
     /// Skills only: every member's forcing term (times `dt^2`) and initial
     /// velocity, mapped into the skill's frame, for the band.
-    members: Vec<(Vec<[f64; 3]>, [f64; 3])>,
+    pub(crate) members: Vec<(Vec<[f64; 3]>, [f64; 3])>,
+    /// The diagonal of the bounding box of the start, the goal and the path
+    /// at its own target (metres), computed once.
+    pub(crate) extent: f64,
 }
 
 /// A primitive run at a target: unit-time and real-time kinematics.
@@ -290,34 +137,25 @@ impl Primitive {
             weights: std::array::from_fn(|ax| model.projections(i).weights_at(ax, dm, km)),
             fdt2,
             members: Vec::new(),
-        })
+            extent: 0.0,
+        }
+        .with_extent())
     }
 
-    /// Assembles a skill (used by [`crate::skill`]).
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn skill_parts(
-        name: String,
-        (dm, km, alpha_x): (f64, f64, f64),
-        (origin, y0, goal, v0): ([f64; 3], [f64; 3], [f64; 3], [f64; 3]),
-        duration_s: f64,
-        weights: [Vec<f64>; 3],
-        fdt2: Vec<[f64; 3]>,
-        members: Vec<(Vec<[f64; 3]>, [f64; 3])>,
-    ) -> Self {
-        Self {
-            name,
-            dm,
-            km,
-            alpha_x,
-            origin,
-            y0,
-            goal,
-            v0,
-            duration_s,
-            weights,
-            fdt2,
-            members,
+    /// Sets [`Self::extent`] from the primitive's own run (every
+    /// constructor ends here; the per-axis warning reads it).
+    pub(crate) fn with_extent(mut self) -> Self {
+        let path = self.integrate(self.y0, self.goal, &self.fdt2, self.v0).y;
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in path.iter().chain([&self.goal]) {
+            for a in 0..3 {
+                lo[a] = lo[a].min(p[a]);
+                hi[a] = hi[a].max(p[a]);
+            }
         }
+        self.extent = norm(std::array::from_fn(|a| hi[a] - lo[a]));
+        self
     }
 
     /// Grid points of the unit-time integration.
@@ -336,11 +174,6 @@ impl Primitive {
         self.fdt2.iter().map(|f| f.map(|v| v / dt2)).collect()
     }
 
-    /// The forcing term times `dt^2`, as integrated.
-    pub(crate) fn forcing_dt2(&self) -> &[[f64; 3]] {
-        &self.fdt2
-    }
-
     fn dt(&self) -> f64 {
         1.0 / (self.fdt2.len().max(2) - 1) as f64
     }
@@ -353,21 +186,6 @@ impl Primitive {
     /// Own goal, absolute.
     pub fn goal_abs(&self) -> [f64; 3] {
         std::array::from_fn(|a| self.goal[a] + self.origin[a])
-    }
-
-    /// The diagonal of the bounding box of the start, the goal and the
-    /// path at its own target: the motion's extent, metres.
-    fn extent(&self) -> f64 {
-        let path = self.integrate(self.y0, self.goal, &self.fdt2, self.v0).y;
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for p in path.iter().chain([&self.goal]) {
-            for a in 0..3 {
-                lo[a] = lo[a].min(p[a]);
-                hi[a] = hi[a].max(p[a]);
-            }
-        }
-        norm(std::array::from_fn(|a| hi[a] - lo[a]))
     }
 
     /// Runs the primitive at `target`: from its start to its goal over its
@@ -422,7 +240,7 @@ impl Primitive {
         })?;
         let mut warnings = Vec::new();
         if let (Scaling::Paper, Mapping::Diagonal(factors)) = (target.scaling, mapping) {
-            let extent = self.extent();
+            let extent = self.extent;
             for (a, axis) in ["x", "y", "z"].iter().enumerate() {
                 // Only where the factor does something.
                 if from[a].abs() < 0.05 * extent && (factors[a] - 1.0).abs() > 1e-6
@@ -565,51 +383,4 @@ pub(crate) fn check_gains(dm: f64, km: f64) -> Result<()> {
         }
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_smallest_rotation_takes_a_to_b() {
-        let a = [1.0, 0.0, 0.0];
-        for b in [
-            [0.0, 1.0, 0.0],
-            [-1.0, 0.0, 0.0],
-            [0.6, 0.0, 0.8],
-            [-0.36, 0.48, 0.8],
-        ] {
-            let r = smallest_rotation(a, b).expect("not parallel");
-            let got = Mapping::Matrix(r).apply(a);
-            for c in 0..3 {
-                assert!((got[c] - b[c]).abs() < 1e-15, "{got:?} vs {b:?}");
-            }
-            // Orthonormal.
-            for i in 0..3 {
-                for j in 0..3 {
-                    let dot: f64 = (0..3).map(|k| r[i][k] * r[j][k]).sum();
-                    let want = if i == j { 1.0 } else { 0.0 };
-                    assert!((dot - want).abs() < 1e-15);
-                }
-            }
-        }
-        assert!(smallest_rotation(a, a).is_none());
-        // Within 1e-6 rad of opposite: exactly the pi turn, whatever the
-        // last bits.
-        let near = [-1.0, 1e-8, 0.0];
-        let len = norm(near);
-        let r = smallest_rotation(a, near.map(|v| v / len)).expect("opposite");
-        let exact = smallest_rotation(a, [-1.0, 0.0, 0.0]).expect("opposite");
-        assert_eq!(r, exact);
-        assert_eq!(Mapping::Matrix(r).apply(a), [-1.0, 0.0, 0.0]);
-    }
-
-    #[test]
-    fn per_axis_factors_leave_a_still_axis_alone() {
-        let m =
-            Mapping::between([0.2, 0.0, 1e-12], [0.4, 0.3, 0.1], Scaling::Paper).expect("paper");
-        assert_eq!(m, Mapping::Diagonal([2.0, 1.0, 1.0]));
-        assert!(Mapping::between([0.0; 3], [0.1, 0.0, 0.0], Scaling::Frame).is_err());
-    }
 }

@@ -34,6 +34,7 @@ pub mod generalise;
 pub mod group;
 pub mod io;
 pub mod landscape;
+pub mod mapping;
 pub mod model;
 pub mod nelder_mead;
 pub mod notice;

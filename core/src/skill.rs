@@ -43,18 +43,13 @@ impl Skill {
             });
         }
         let nf = count as f64;
-        let mean3 = |f: &dyn Fn(&Primitive) -> [f64; 3]| -> [f64; 3] {
-            let mut s = [0.0; 3];
-            for p in &parts {
-                let v = f(p);
-                for a in 0..3 {
-                    s[a] += v[a];
-                }
-            }
-            s.map(|v| v / nf)
-        };
-        let origin = mean3(&|p| p.start_abs());
-        let displacement = mean3(&|p| std::array::from_fn(|a| p.goal[a] - p.y0[a]));
+        let origin = mean3(parts.iter().map(Primitive::start_abs), nf);
+        let displacement = mean3(
+            parts
+                .iter()
+                .map(|p| std::array::from_fn(|a| p.goal[a] - p.y0[a])),
+            nf,
+        );
         let length = displacement.iter().map(|v| v * v).sum::<f64>().sqrt();
         if scaling == Scaling::Frame && length < 1e-9 {
             return Err(Error::InvalidSetting(
@@ -78,7 +73,7 @@ impl Skill {
             .iter()
             .zip(&mappings)
             .map(|(p, m)| {
-                let f = p.forcing_dt2().iter().map(|f| m.apply(*f)).collect();
+                let f = p.fdt2.iter().map(|f| m.apply(*f)).collect();
                 (f, m.apply(p.v0))
             })
             .collect();
@@ -109,15 +104,7 @@ impl Skill {
                 *v = v.map(|c| (c / (nf - 1.0)).sqrt());
             }
         }
-        let v0 = {
-            let mut s = [0.0; 3];
-            for (_, v) in &members {
-                for a in 0..3 {
-                    s[a] += v[a];
-                }
-            }
-            s.map(|v| v / nf)
-        };
+        let v0 = mean3(members.iter().map(|m| m.1), nf);
         let b = parts[0].weights[0].len();
         let weights: [Vec<f64>; 3] = {
             let mut w = [vec![0.0; b], vec![0.0; b], vec![0.0; b]];
@@ -132,15 +119,22 @@ impl Skill {
             w.map(|axis| axis.into_iter().map(|v| v / nf).collect())
         };
         let duration = parts.iter().map(|p| p.duration_s).sum::<f64>() / nf;
-        let primitive = Primitive::skill_parts(
-            format!("skill ({count} demos)"),
-            (dm, km, model.settings().alpha_x),
-            (origin, [0.0; 3], displacement, v0),
-            duration,
+        let primitive = Primitive {
+            name: format!("skill ({count} demos)"),
+            dm,
+            km,
+            alpha_x: model.settings().alpha_x,
+            origin,
+            y0: [0.0; 3],
+            goal: displacement,
+            v0,
+            duration_s: duration,
             weights,
-            mean,
+            fdt2: mean,
             members,
-        );
+            extent: 0.0,
+        }
+        .with_extent();
         Ok(Self {
             primitive,
             forcing_sd,
@@ -148,4 +142,15 @@ impl Skill {
             scaling,
         })
     }
+}
+
+/// The mean of `values` (their sum, in order, over `n`).
+fn mean3(values: impl Iterator<Item = [f64; 3]>, n: f64) -> [f64; 3] {
+    let mut s = [0.0; 3];
+    for v in values {
+        for a in 0..3 {
+            s[a] += v[a];
+        }
+    }
+    s.map(|v| v / n)
 }

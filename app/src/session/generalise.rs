@@ -4,6 +4,8 @@
 //! or the target changes (a drag of the goal changes the target every
 //! frame: one primitive and its rollout, well under a millisecond).
 
+use std::sync::Arc;
+
 use dmpscope_core::{Generalised, Model, Primitive, Scaling, Skill, Target};
 
 /// What is generalised.
@@ -50,12 +52,12 @@ impl GeneraliseSpec {
 #[derive(Clone, Debug)]
 pub struct GenView {
     /// The primitive run (its own start, goal and duration are the
-    /// defaults of the target).
-    pub primitive: Primitive,
+    /// defaults of the target); shared with the stage, not copied per run.
+    pub primitive: Arc<Primitive>,
     /// The run at the target.
     pub out: Generalised,
     /// Skills: the forcing terms' per-time SD.
-    pub forcing_sd: Option<Vec<[f64; 3]>>,
+    pub forcing_sd: Option<Arc<Vec<[f64; 3]>>>,
 }
 
 /// The key the stage was computed for (f64s by their bits).
@@ -111,7 +113,7 @@ impl GenKey {
     }
 }
 
-type Fitted = Result<(Primitive, Option<Vec<[f64; 3]>>), String>;
+type Fitted = Result<(Arc<Primitive>, Option<Arc<Vec<[f64; 3]>>>), String>;
 
 /// The stage's state.
 pub(super) struct GenState {
@@ -161,13 +163,13 @@ impl GenState {
 fn fit(model: &Model, (dm, km): (f64, f64), spec: &GeneraliseSpec) -> Fitted {
     match spec.source {
         GenSource::Demo(i) => Ok((
-            Primitive::of_demo(model, i, dm, km).map_err(|e| e.to_string())?,
+            Arc::new(Primitive::of_demo(model, i, dm, km).map_err(|e| e.to_string())?),
             None,
         )),
         GenSource::Skill => {
             let skill =
                 Skill::new(model, dm, km, spec.target.scaling).map_err(|e| e.to_string())?;
-            Ok((skill.primitive, Some(skill.forcing_sd)))
+            Ok((Arc::new(skill.primitive), Some(Arc::new(skill.forcing_sd))))
         }
     }
 }

@@ -93,13 +93,9 @@ pub fn generalise_ui(
     let Some(mut spec) = current else {
         return;
     };
+    // (A demo source follows the selected demo: `DmpApp` sees to it each
+    // frame, whichever tab is open.)
     let before = spec;
-    // A demo source follows the demo the plots show.
-    if let GenSource::Demo(i) = spec.source
-        && i != view.selected
-    {
-        spec.source = GenSource::Demo(view.selected);
-    }
     ui.horizontal(|ui| {
         ui.label("of");
         let demo = GenSource::Demo(view.selected);

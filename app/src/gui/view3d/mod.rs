@@ -228,14 +228,9 @@ impl View3d {
         };
         let segments = Arc::new(scene::build(&frame, &input));
         let view_proj = camera.view_proj(aspect);
+        let to_screen = |p: glam::Vec3| project(view_proj, rect, p);
         self.handles_on_screen = overlay.and_then(|ov| {
-            let screen = |p: [f64; 3]| {
-                let c = view_proj * frame.local(p).extend(1.0);
-                (c.w > 1e-6).then(|| {
-                    let ndc = c.truncate() / c.w;
-                    rect.center() + egui::vec2(ndc.x, -ndc.y) * (rect.size() * 0.5)
-                })
-            };
+            let screen = |p: [f64; 3]| to_screen(frame.local(p));
             Some([screen(ov.start)?, screen(ov.goal)?])
         });
         let uniforms = gpu::Uniforms {
@@ -251,13 +246,6 @@ impl View3d {
         // Axis names and the grid step, as text over the picture.
         let step = frame.grid_step();
         let o = frame.axes_origin();
-        let to_screen = |p: glam::Vec3| {
-            let c = view_proj * p.extend(1.0);
-            (c.w > 1e-6).then(|| {
-                let ndc = c.truncate() / c.w;
-                rect.center() + egui::vec2(ndc.x, -ndc.y) * (rect.size() * 0.5)
-            })
-        };
         for (axis, name) in [
             (glam::Vec3::X, "x"),
             (glam::Vec3::Y, "y"),
@@ -312,13 +300,7 @@ impl View3d {
     ) -> Option<HandleMove> {
         let aspect = rect.width() / rect.height().max(1.0);
         let view_proj = camera.view_proj(aspect);
-        let to_screen = |p: glam::Vec3| {
-            let c = view_proj * p.extend(1.0);
-            (c.w > 1e-6).then(|| {
-                let ndc = c.truncate() / c.w;
-                rect.center() + egui::vec2(ndc.x, -ndc.y) * (rect.size() * 0.5)
-            })
-        };
+        let to_screen = |p: glam::Vec3| project(view_proj, rect, p);
         if response.drag_started_by(egui::PointerButton::Primary)
             && let Some(press) = ui.input(|i| i.pointer.press_origin())
         {
@@ -356,4 +338,14 @@ impl View3d {
         let to = std::array::from_fn(|a| frame.origin[a] + f64::from(new_local[a]));
         Some(HandleMove { handle, to })
     }
+}
+
+/// Where scene point `p` lands in `rect` under `view_proj` (screen points);
+/// `None` behind the camera.
+fn project(view_proj: glam::Mat4, rect: egui::Rect, p: glam::Vec3) -> Option<egui::Pos2> {
+    let c = view_proj * p.extend(1.0);
+    (c.w > 1e-6).then(|| {
+        let ndc = c.truncate() / c.w;
+        rect.center() + egui::vec2(ndc.x, -ndc.y) * (rect.size() * 0.5)
+    })
 }
