@@ -133,6 +133,9 @@ pub enum Error {
     /// A setting is out of its range.
     #[error("invalid setting: {0}")]
     InvalidSetting(String),
+    /// Training stopped because something became non-finite.
+    #[error("training stopped: {0}")]
+    Training(String),
     /// The work was cancelled by the caller.
     #[error("cancelled")]
     Cancelled,

@@ -203,14 +203,14 @@ fn diagnostics_figures(
 /// PPO iteration (4 episodes + 8 epochs of updates).
 fn rl_figures(model: &dmpscope_core::Model) -> anyhow::Result<()> {
     use dmpscope_core::rl::mlp::{Adam, Mlp};
-    use dmpscope_core::rl::ppo::{Batch, critic_loss_grad};
-    use dmpscope_core::rl::{DmpEnv, PpoConfig, Trainer};
+    use dmpscope_core::rl::loss::{Batch, critic_loss_grad};
+    use dmpscope_core::rl::{DmpEnv, EnvOptions, PpoConfig, Trainer};
     let mut rng = dmpscope_core::synth::Rng::new(1);
     let mut critic = Mlp::new(&[7, 64, 64, 1], &mut rng, 1.0);
     let mut adam = Adam::new(critic.params.len(), 1e-3);
     let mut batch = Batch::default();
     for _ in 0..100 {
-        batch.obs.push(std::array::from_fn(|_| rng.normal()));
+        batch.obs.push((0..7).map(|_| rng.normal()).collect());
         batch.ret.push(rng.normal());
     }
     let idx: Vec<usize> = (0..100).collect();
@@ -221,12 +221,12 @@ fn rl_figures(model: &dmpscope_core::Model) -> anyhow::Result<()> {
         adam.step(&mut critic.params, &g);
         step_ms.push(t.elapsed().as_secs_f64() * 1e3);
     }
-    let env = DmpEnv::new(&model.demos()[0], 32.6, 1000.0)?;
+    let env = DmpEnv::new(model, 0, 32.6, 1000.0, EnvOptions::default())?;
     let mut trainer = Trainer::new(env, PpoConfig::default(), 1);
     let mut iter_ms = Vec::new();
     for _ in 0..15 {
         let t = Instant::now();
-        std::hint::black_box(trainer.iterate());
+        std::hint::black_box(trainer.iterate()?);
         iter_ms.push(t.elapsed().as_secs_f64() * 1e3);
     }
     println!(

@@ -11,6 +11,7 @@ mod landscape;
 mod output;
 mod regen;
 mod rl;
+mod rl_table;
 
 use clap::{CommandFactory, Parser, Subcommand};
 

@@ -1,20 +1,41 @@
 //! `dmpscope rl`: train a PPO agent whose action is the DMP forcing term
 //! (method.md section 8) for one demo at chosen gains, or `--compare` the
-//! extracted gains with the paper's (the paper's Fig. 5 as a table).
+//! extracted gains with the paper's (the paper's Fig. 5 as a table; the
+//! runs share the machine's cores, `--jobs`).
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use dmpscope_core::Model;
 use dmpscope_core::presets::PAPER_PRESETS;
-use dmpscope_core::rl::{DmpEnv, GreedyRun, PpoConfig, REACHED_M, Trainer};
+use dmpscope_core::rl::{ActionMode, EnvOptions, GreedyRun, REACHED_M, TrainingRun, diverged};
 use serde_json::json;
 
 use super::inputs::{InputArgs, load_model};
 use super::landscape::{GridArgs, landscape_and_optimum};
 use super::output::{progress_bar, write_text};
+use super::rl_table::{Outcome, table};
+
+/// What the action is (method.md section 8).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum Mode {
+    /// The action is the whole forcing term (the paper).
+    Forcing,
+    /// The action is added to the demo's fitted forcing term at the gains.
+    Residual,
+}
+
+impl From<Mode> for ActionMode {
+    fn from(m: Mode) -> Self {
+        match m {
+            Mode::Forcing => Self::Forcing,
+            Mode::Residual => Self::Residual,
+        }
+    }
+}
 
 /// Arguments of `rl`.
 #[derive(Debug, clap::Args)]
@@ -42,7 +63,14 @@ pub struct Args {
     /// comparison table.
     #[arg(long)]
     compare: bool,
-    /// Environment decisions to train for (100 per episode).
+    /// What the action is.
+    #[arg(long, value_enum, default_value_t = Mode::Forcing)]
+    mode: Mode,
+    /// Decisions per episode: 100 (each held 10 integration steps) or 1000
+    /// (one per integration step); any divisor of the demo's steps works.
+    #[arg(long, default_value_t = dmpscope_core::rl::env::DECISIONS)]
+    decisions: usize,
+    /// Environment decisions to train for.
     #[arg(long, default_value_t = dmpscope_core::rl::DEFAULT_DECISIONS)]
     steps: usize,
     /// Seed of the first run.
@@ -51,98 +79,71 @@ pub struct Args {
     /// Runs per gain set with --compare (seeds seed, seed+1, ...).
     #[arg(long, default_value_t = 3)]
     seeds: u64,
+    /// Runs trained at once with --compare (default: the machine's cores).
+    #[arg(long)]
+    jobs: Option<usize>,
     /// Write the results as JSON here.
     #[arg(long, short)]
     out: Option<PathBuf>,
+    /// Write the trained policy (network, log-sds, observation normaliser,
+    /// the environment's scales) as JSON here (one run only).
+    #[arg(long, conflicts_with = "compare")]
+    save_policy: Option<PathBuf>,
 }
 
-/// One training run's outcome.
-struct Outcome {
+/// A run to do.
+struct Job {
     name: String,
-    dm: f64,
-    km: f64,
+    gains: (f64, f64),
     seed: u64,
-    run: GreedyRun,
-    d: f64,
-    returns: Vec<f64>,
-    seconds: f64,
-}
-
-impl Outcome {
-    fn reached(&self) -> bool {
-        self.run.final_error <= REACHED_M
-    }
-
-    fn json(&self) -> serde_json::Value {
-        json!({
-            "gains": self.name, "dm": self.dm, "km": self.km, "seed": self.seed,
-            "final_error_m": self.run.final_error, "d_m": self.d,
-            "a_peak": self.run.a_peak(), "reached": self.reached(),
-            "train_seconds": self.seconds, "returns": self.returns,
-            "path": self.run.path,
-        })
-    }
 }
 
 fn train(
     model: &Model,
     demo: usize,
-    gains: (&str, f64, f64),
+    job: &Job,
+    options: EnvOptions,
     steps: usize,
-    seed: u64,
-) -> anyhow::Result<Outcome> {
-    let (name, dm, km) = gains;
-    let env = DmpEnv::new(&model.demos()[demo], dm, km)?;
-    let mut trainer = Trainer::new(env, PpoConfig::default(), seed);
-    let bar = progress_bar(steps as u64, &format!("PPO {name} seed {seed}"));
+    bar: &indicatif::ProgressBar,
+) -> anyhow::Result<(Outcome, TrainingRun)> {
+    let mut run = TrainingRun::new(model, demo, job.gains, options, steps, job.seed)
+        .map_err(|e| anyhow::anyhow!("{} gains: {e}", job.name))?;
     let start = Instant::now();
-    while trainer.decisions() < steps {
-        let stats = trainer.iterate();
-        bar.set_position(stats.decisions.min(steps) as u64);
+    let mut last = 0;
+    while !run.done() {
+        let stats = run
+            .step(start.elapsed().as_secs_f64())
+            .map_err(|e| anyhow::anyhow!("{} gains, seed {}: {e}", job.name, job.seed))?;
+        if let Some(s) = stats {
+            bar.inc((s.decisions.min(steps) - last) as u64);
+            last = s.decisions.min(steps);
+        }
     }
     let seconds = start.elapsed().as_secs_f64();
-    bar.finish_and_clear();
-    let run = trainer.greedy();
-    let d = model.path_error(demo, &run.path);
-    Ok(Outcome {
-        name: name.to_owned(),
-        dm,
-        km,
-        seed,
-        d,
-        returns: trainer.returns.clone(),
-        run,
+    let greedy: GreedyRun = run
+        .greedy()
+        .cloned()
+        .ok_or_else(|| anyhow::anyhow!("training ended before its first iteration"))?;
+    let returns = run.trainer().returns.clone();
+    let outcome = Outcome {
+        name: job.name.clone(),
+        dm: job.gains.0,
+        km: job.gains.1,
+        seed: job.seed,
+        d: model.path_error(demo, &greedy.path),
+        reached: greedy.final_error <= REACHED_M,
+        diverged: diverged(&returns),
+        first_reach: run.first_reach(),
+        run: greedy,
+        returns,
         seconds,
-    })
-}
-
-fn curve(returns: &[f64]) -> String {
-    let at = |f: f64| returns[((returns.len() - 1) as f64 * f) as usize];
-    if returns.is_empty() {
-        return "-".into();
-    }
-    format!("{:.3} -> {:.3} -> {:.3}", at(0.0), at(0.5), at(1.0))
-}
-
-/// Trains and prints the outcome (or the comparison table).
-pub fn run(args: Args) -> anyhow::Result<()> {
-    if args.steps == 0 || args.seeds == 0 {
-        anyhow::bail!("--steps and --seeds must be at least 1");
-    }
-    let input = &args.input;
-    let needs_landscape = args.extracted || args.compare;
-    let (model, extracted): (Arc<Model>, Option<(f64, f64)>) = if needs_landscape {
-        let (_, model, _, x) = landscape_and_optimum(input, &args.grid)?;
-        (model, Some((x.eval.dm, x.eval.km)))
-    } else {
-        (load_model(input)?.1, None)
     };
-    let n = model.demos().len();
-    if args.demo == 0 || args.demo > n {
-        anyhow::bail!("--demo must be between 1 and {n}, got {}", args.demo);
-    }
-    let demo = args.demo - 1;
-    let mut sets: Vec<(String, f64, f64)> = Vec::new();
+    Ok((outcome, run))
+}
+
+/// The gain sets the arguments ask for.
+fn gain_sets(args: &Args, extracted: Option<(f64, f64)>) -> anyhow::Result<Vec<(String, f64, f64)>> {
+    let mut sets = Vec::new();
     if let (Some(dm), Some(km)) = (args.dm, args.km) {
         for (flag, v) in [("--dm", dm), ("--km", km)] {
             if !(v.is_finite() && v > 0.0) {
@@ -162,54 +163,95 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else if let Some((dm, km)) = extracted {
         sets.push(("Extracted".into(), dm, km));
         if args.compare {
-            sets.extend(
-                PAPER_PRESETS
-                    .iter()
-                    .map(|p| (p.name.to_owned(), p.dm, p.km)),
-            );
+            sets.extend(PAPER_PRESETS.iter().map(|p| (p.name.to_owned(), p.dm, p.km)));
         }
     } else {
         anyhow::bail!("choose the gains: --dm X --km Y, --preset NAME, --extracted or --compare");
     }
+    Ok(sets)
+}
+
+/// Trains and prints the outcome (or the comparison table).
+pub fn run(args: Args) -> anyhow::Result<()> {
+    if args.steps == 0 || args.seeds == 0 || args.jobs == Some(0) {
+        anyhow::bail!("--steps, --seeds and --jobs must be at least 1");
+    }
+    let input = &args.input;
+    let needs_landscape = args.extracted || args.compare;
+    let (model, extracted): (Arc<Model>, Option<(f64, f64)>) = if needs_landscape {
+        let (_, model, _, x) = landscape_and_optimum(input, &args.grid)?;
+        (model, Some((x.eval.dm, x.eval.km)))
+    } else {
+        (load_model(input)?.1, None)
+    };
+    let n = model.demos().len();
+    if args.demo == 0 || args.demo > n {
+        anyhow::bail!("--demo must be between 1 and {n}, got {}", args.demo);
+    }
+    let demo = args.demo - 1;
+    let options = EnvOptions {
+        decisions: args.decisions,
+        mode: args.mode.into(),
+    };
     let seeds: Vec<u64> = if args.compare {
         (0..args.seeds).map(|i| args.seed + i).collect()
     } else {
         vec![args.seed]
     };
-    let mut outcomes = Vec::new();
-    for (name, dm, km) in &sets {
-        for &seed in &seeds {
-            outcomes.push(train(&model, demo, (name, *dm, *km), args.steps, seed)?);
+    let jobs: Vec<Job> = gain_sets(&args, extracted)?
+        .into_iter()
+        .flat_map(|(name, dm, km)| {
+            seeds.iter().map(move |&seed| Job {
+                name: name.clone(),
+                gains: (dm, km),
+                seed,
+            })
+        })
+        .collect();
+    let workers = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, usize::from))
+        .min(jobs.len());
+    let bar = progress_bar((args.steps * jobs.len()) as u64, "PPO");
+    let next = AtomicUsize::new(0);
+    let results: Mutex<Vec<Option<anyhow::Result<(Outcome, TrainingRun)>>>> =
+        Mutex::new((0..jobs.len()).map(|_| None).collect());
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(job) = jobs.get(i) else { break };
+                    let r = train(&model, demo, job, options, args.steps, &bar);
+                    if let Ok(mut all) = results.lock() {
+                        all[i] = Some(r);
+                    }
+                }
+            });
         }
+    });
+    bar.finish_and_clear();
+    let results = results
+        .into_inner()
+        .map_err(|_| anyhow::anyhow!("a training thread panicked"))?;
+    let mut outcomes = Vec::new();
+    let mut last_run = None;
+    for r in results {
+        let (o, run) = r.ok_or_else(|| anyhow::anyhow!("a training run did not finish"))??;
+        outcomes.push(o);
+        last_run = Some(run);
     }
     let mut text = String::new();
     let _ = writeln!(
         text,
-        "RL with DMP on {} ({} decisions of training per run)",
+        "RL with DMP on {} ({} decisions of training per run, {} decisions per episode, action: {}, {} run(s) at once)",
         model.demos()[demo].name,
-        args.steps
+        args.steps,
+        args.decisions,
+        ActionMode::from(args.mode).name(),
+        workers
     );
-    let _ = writeln!(
-        text,
-        "{:<10} {:>8} {:>9} {:>5} {:>8} {:>15} {:>9} {:>8} {:>9}  learning curve (mean return: first -> middle -> last)",
-        "gains", "D/M", "K/M", "seed", "reached", "final error mm", "d mm", "a_peak", "train s"
-    );
-    for o in &outcomes {
-        let _ = writeln!(
-            text,
-            "{:<10} {:>8.3} {:>9.3} {:>5} {:>8} {:>15.3} {:>9.3} {:>8.2} {:>9.2}  {}",
-            o.name,
-            o.dm,
-            o.km,
-            o.seed,
-            if o.reached() { "yes" } else { "no" },
-            o.run.final_error * 1e3,
-            o.d * 1e3,
-            o.run.a_peak(),
-            o.seconds,
-            curve(&o.returns)
-        );
-    }
+    text.push_str(&table(&outcomes));
     print!("{text}");
     if let Some(out) = &args.out {
         let value = if outcomes.len() == 1 {
@@ -218,6 +260,25 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             json!({ "runs": outcomes.iter().map(Outcome::json).collect::<Vec<_>>() })
         };
         write_text(Some(out), &serde_json::to_string_pretty(&value)?)?;
+    }
+    if let (Some(path), Some(run)) = (&args.save_policy, &last_run) {
+        let env = run.trainer().task();
+        let value = json!({
+            "format": "dmpscope.policy",
+            "version": 1,
+            "demo": model.demos()[demo].name,
+            "dm": env.dm, "km": env.km,
+            "mode": env.mode().name(),
+            "decisions_per_episode": dmpscope_core::rl::Task::decisions(env),
+            "integration_steps_per_decision": env.hold(),
+            "start": env.start(), "goal": env.goal(),
+            "action_scale": env.action_scale(),
+            "observation_scale_m": env.observation_scale(),
+            "observation": "phase s, then (y - g) / r per axis, then y' / r per axis (unit time); normalised by obs_norm, clipped to +-10",
+            "action": "u = actor(normalised observation); forcing term A = action_scale * u (+ the fitted forcing term in residual mode)",
+            "policy": run.trainer().policy(),
+        });
+        write_text(Some(path), &serde_json::to_string_pretty(&value)?)?;
     }
     Ok(())
 }

@@ -19,6 +19,8 @@ pub struct RlChoices {
     pub steps: usize,
     /// The seed.
     pub seed: u64,
+    /// Decisions per episode and the action mode.
+    pub options: dmpscope_core::rl::EnvOptions,
 }
 
 impl Default for RlChoices {
@@ -27,6 +29,7 @@ impl Default for RlChoices {
             gains: 1,
             steps: dmpscope_core::rl::DEFAULT_DECISIONS,
             seed: 1,
+            options: dmpscope_core::rl::EnvOptions::default(),
         }
     }
 }

@@ -520,6 +520,9 @@ impl Session {
         match rl.job.as_mut().and_then(Job::poll) {
             Some(Update::Progress(p)) => rl.progress = p,
             Some(Update::Done(p)) => {
+                if let Some(why) = &p.stopped {
+                    self.messages.say(Level::Error, format!("RL: {why}"));
+                }
                 rl.progress = p;
                 rl.job = None;
             }

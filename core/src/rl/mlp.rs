@@ -9,10 +9,12 @@
 //! this side's figure. The gradients are checked against finite
 //! differences in `core/tests/rl.rs`.
 
+use serde::{Deserialize, Serialize};
+
 use crate::synth::Rng;
 
 /// A fully connected network `sizes[0] -> ... -> sizes[last]`.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Mlp {
     sizes: Vec<usize>,
     /// All weights and biases, layer by layer: `W` (out x in, row-major),
@@ -42,6 +44,34 @@ impl Mlp {
             sizes: sizes.to_vec(),
             params,
         }
+    }
+
+    /// A network whose weight matrices are orthogonal (Saxe et al. 2014,
+    /// the initialisation of the PPO implementations: rows or columns
+    /// orthonormal, whichever are fewer) times `hidden_gain` for the hidden
+    /// layers and `last_gain` for the output layer; biases 0.
+    pub fn orthogonal(sizes: &[usize], rng: &mut Rng, hidden_gain: f64, last_gain: f64) -> Self {
+        let mut params = Vec::new();
+        for (l, w) in sizes.windows(2).enumerate() {
+            let (n_in, n_out) = (w[0], w[1]);
+            let gain = if l + 2 == sizes.len() {
+                last_gain
+            } else {
+                hidden_gain
+            };
+            let q = orthonormal_rows(n_out, n_in, rng);
+            params.extend(q.iter().map(|v| v * gain));
+            params.extend(std::iter::repeat_n(0.0, n_out));
+        }
+        Self {
+            sizes: sizes.to_vec(),
+            params,
+        }
+    }
+
+    /// The layer sizes.
+    pub fn sizes(&self) -> &[usize] {
+        &self.sizes
     }
 
     /// The output size.
@@ -114,6 +144,50 @@ impl Mlp {
             }
         }
     }
+}
+
+/// A `rows x cols` matrix (row-major) with orthonormal rows when `rows <=
+/// cols`, else orthonormal columns: Gram-Schmidt (twice, for accuracy) on
+/// Gaussian vectors of the longer dimension.
+fn orthonormal_rows(rows: usize, cols: usize, rng: &mut Rng) -> Vec<f64> {
+    let (count, len) = (rows.min(cols), rows.max(cols));
+    let mut basis: Vec<Vec<f64>> = Vec::with_capacity(count);
+    while basis.len() < count {
+        let mut v: Vec<f64> = (0..len).map(|_| rng.normal()).collect();
+        for _ in 0..2 {
+            for b in &basis {
+                let dot: f64 = v.iter().zip(b).map(|(x, y)| x * y).sum();
+                v.iter_mut().zip(b).for_each(|(x, y)| *x -= dot * y);
+            }
+        }
+        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        // A draw (nearly) inside the span so far is drawn again.
+        if norm > 1e-6 {
+            basis.push(v.into_iter().map(|x| x / norm).collect());
+        }
+    }
+    let mut out = vec![0.0; rows * cols];
+    for (i, b) in basis.iter().enumerate() {
+        for (j, x) in b.iter().enumerate() {
+            if rows <= cols {
+                out[i * cols + j] = *x;
+            } else {
+                out[j * cols + i] = *x;
+            }
+        }
+    }
+    out
+}
+
+/// Scales `grad` down to Euclidean norm `max` when it is longer; returns the
+/// norm before clipping.
+pub fn clip_grad_norm(grad: &mut [f64], max: f64) -> f64 {
+    let norm = grad.iter().map(|g| g * g).sum::<f64>().sqrt();
+    if norm > max && norm > 0.0 {
+        let f = max / norm;
+        grad.iter_mut().for_each(|g| *g *= f);
+    }
+    norm
 }
 
 /// Adam (Kingma and Ba) over a flat parameter vector.

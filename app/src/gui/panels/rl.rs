@@ -4,7 +4,7 @@
 //! is drawn in the 3D view beside the demo and its LfD regeneration.
 
 use dmpscope_core::presets::PAPER_PRESETS;
-use dmpscope_core::rl::REACHED_M;
+use dmpscope_core::rl::{ActionMode, REACHED_M};
 use eframe::egui::{self, Color32};
 use egui_plot::{Line, Plot, PlotPoints};
 
@@ -56,6 +56,27 @@ pub fn rl_ui(
         let l = ui.label("seed");
         ui.add(egui::DragValue::new(&mut c.seed)).labelled_by(l.id);
     });
+    ui.horizontal(|ui| {
+        egui::ComboBox::from_label("action")
+            .selected_text(c.options.mode.name())
+            .show_ui(ui, |ui| {
+                for m in ActionMode::ALL {
+                    ui.selectable_value(&mut c.options.mode, m, m.name());
+                }
+            })
+            .response
+            .on_hover_text(
+                "forcing: the action is the whole forcing term (the paper); \
+                 residual: it is added to the demo's fitted forcing term",
+            );
+        egui::ComboBox::from_label("per episode")
+            .selected_text(format!("{} decisions", c.options.decisions))
+            .show_ui(ui, |ui| {
+                for n in [100, 1000] {
+                    ui.selectable_value(&mut c.options.decisions, n, format!("{n} decisions"));
+                }
+            });
+    });
     let run = session.rl();
     let running = run.is_some_and(|(_, p)| !p.done);
     ui.horizontal(|ui| {
@@ -74,6 +95,7 @@ pub fn rl_ui(
                 gains_name,
                 dm,
                 km,
+                options: view.rl.options,
                 steps: view.rl.steps,
                 seed: view.rl.seed,
             };
@@ -88,11 +110,13 @@ pub fn rl_ui(
         return;
     };
     ui.label(format!(
-        "demo {} · {} (D/M {:.3}, K/M {:.3})",
+        "demo {} · {} (D/M {:.3}, K/M {:.3}) · {} · {} per episode",
         request.demo + 1,
         request.gains_name,
         request.dm,
-        request.km
+        request.km,
+        request.options.mode.name(),
+        request.options.decisions
     ));
     let (done, total) = p.decisions;
     let state = if p.cancelled { ", cancelled" } else { "" };
@@ -118,6 +142,22 @@ pub fn rl_ui(
                 g.a_peak()
             ),
         );
+    }
+    ui.label(match p.first_reach {
+        Some(f) => format!(
+            "first reached after {} decisions ({:.1} s)",
+            f.decisions, f.seconds
+        ),
+        None => "not reached yet".to_owned(),
+    });
+    if p.diverged {
+        ui.colored_label(
+            Color32::from_rgb(240, 160, 90),
+            "diverging: the last tenth's mean return is more than 10 % below the best tenth's",
+        );
+    }
+    if let Some(why) = &p.stopped {
+        ui.colored_label(Color32::from_rgb(240, 110, 110), why);
     }
     let points: PlotPoints<'_> = p
         .returns
