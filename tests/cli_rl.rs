@@ -62,8 +62,76 @@ fn rl_writes_its_results_and_repeats_them_for_a_seed() {
 }
 
 #[test]
+fn rl_options_residual_mode_a_thousand_decisions_and_the_saved_policy() {
+    let dir = std::env::temp_dir().join(format!("dmpscope-cli-rl-opt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let (out, policy) = (dir.join("r.json"), dir.join("policy.json"));
+    let o = dmpscope(&[
+        "rl",
+        "assets/reach10.mcap",
+        "--preset",
+        "Ours",
+        "--mode",
+        "residual",
+        "--decisions",
+        "1000",
+        "--steps",
+        "4000",
+        "--out",
+        out.to_str().expect("utf-8 path"),
+        "--save-policy",
+        policy.to_str().expect("utf-8 path"),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let stdout = text(&o.stdout);
+    assert!(
+        stdout.contains("1000 decisions per episode, action: residual"),
+        "{stdout}"
+    );
+    let r: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&out).expect("json")).expect("json");
+    assert_eq!(r["returns"].as_array().map(Vec::len), Some(1), "4 episodes of 1000");
+    assert!(r["diverged"].is_boolean());
+    let p: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&policy).expect("policy")).expect("json");
+    assert_eq!(p["format"], "dmpscope.policy");
+    assert_eq!(p["mode"], "residual");
+    assert_eq!(p["integration_steps_per_decision"], 1);
+    let sizes = p["policy"]["actor"]["sizes"].as_array().expect("sizes");
+    assert_eq!(sizes.len(), 4, "7-64-64-3");
+    let mean = p["policy"]["obs_norm"]["mean"].as_array().expect("normaliser");
+    assert_eq!(mean.len(), 7);
+    assert!(p["policy"]["obs_norm"]["count"].as_f64().is_some_and(|c| c > 4000.0));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn rl_compare_reports_each_gain_set() {
+    let o = dmpscope(&[
+        "rl",
+        "assets/reach10.mcap",
+        "--compare",
+        "--grid",
+        "16",
+        "--steps",
+        "400",
+        "--seeds",
+        "2",
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let stdout = text(&o.stdout);
+    for name in ["Extracted", "Ours", "Hrstc1", "Hrstc2", "Hrstc3", "Hrstc4"] {
+        assert!(
+            stdout.lines().any(|l| l.starts_with(name) && l.contains("reached") && l.contains("/2, stable")),
+            "{name}: {stdout}"
+        );
+    }
+    assert!(stdout.contains("1st reach") && stdout.contains("stable"), "{stdout}");
+}
+
+#[test]
 fn rl_rejects_bad_arguments_clearly() {
-    let cases: [(&[&str], &str); 4] = [
+    let cases: [(&[&str], &str); 5] = [
         (
             &["--demo", "99", "--preset", "Ours"],
             "--demo must be between 1 and 10",
@@ -74,6 +142,10 @@ fn rl_rejects_bad_arguments_clearly() {
             "--dm must be a positive number",
         ),
         (&[], "choose the gains"),
+        (
+            &["--preset", "Ours", "--decisions", "0"],
+            "decisions per episode must be 1 to 1000",
+        ),
     ];
     for (args, message) in cases {
         let mut all = vec!["rl", "assets/reach10.mcap", "--steps", "100"];

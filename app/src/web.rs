@@ -1,8 +1,11 @@
 //! The browser entry: starts the same [`DmpApp`] as the desktop on the
 //! page's canvas with eframe's web runner (wgpu: WebGPU where the browser
 //! has it, WebGL2 otherwise). With the `testing` feature (the browser
-//! tests' build) it also publishes a read-only hook,
-//! `window.dmpscope_state()`, returning the app's state as JSON.
+//! tests' build) it also publishes `window.dmpscope_state()`, returning the
+//! app's state as JSON, and `window.dmpscope_train(steps, seed)`, which
+//! starts RL training as the RL panel's Train button does (the extracted
+//! gains, the selected demo), so the test can compare the browser's
+//! learning curve with the native CLI's.
 
 use eframe::wasm_bindgen::JsCast as _;
 use eframe::web_sys;
@@ -22,11 +25,27 @@ pub fn publish_state(json: String) {
 }
 
 #[cfg(feature = "testing")]
+thread_local! {
+    /// Training runs the test asked for, `(steps, seed)`, not yet started.
+    static TRAIN: std::cell::RefCell<Vec<(usize, u64)>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// The training runs the test asked for since the last call.
+#[cfg(feature = "testing")]
+pub fn take_train_requests() -> Vec<(usize, u64)> {
+    TRAIN.with(|t| std::mem::take(&mut *t.borrow_mut()))
+}
+
+#[cfg(feature = "testing")]
 fn install_hook() {
     use eframe::wasm_bindgen::prelude::Closure;
     let hook = Closure::<dyn Fn() -> String>::new(|| STATE.with(|s| s.borrow().clone()));
+    let train = Closure::<dyn Fn(f64, f64)>::new(|steps: f64, seed: f64| {
+        TRAIN.with(|t| t.borrow_mut().push((steps as usize, seed as u64)));
+    });
     if let Some(window) = web_sys::window() {
         let _ = js_sys::Reflect::set(&window, &"dmpscope_state".into(), &hook.into_js_value());
+        let _ = js_sys::Reflect::set(&window, &"dmpscope_train".into(), &train.into_js_value());
     }
 }
 

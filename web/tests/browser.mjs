@@ -166,6 +166,25 @@ try {
   check(gainWorst <= 1e-5, `the browser's diagnostic gains match the native ones (relative difference ${gainWorst.toExponential(2)})`);
   check(bd.bootstrap.on_edge_fraction === nd.bootstrap.on_edge_fraction && bd.bootstrap.n === nd.bootstrap.n, "the same bootstrap edge fraction");
 
+  // RL training, time-sliced on the page's thread as the RL panel's Train
+  // does: the same learning curve as the native CLI for the same gains and
+  // seed (RL's transcendental functions are portable, core::rl::math).
+  const rlSteps = 2000;
+  const rlStart = Date.now();
+  await page.evaluate((n) => window.dmpscope_train(n, 1), rlSteps);
+  const trained = await until("RL training", (s) => s.rl && s.rl.done, 120000);
+  figures.rl_train_s = (Date.now() - rlStart) / 1000;
+  check(!trained.rl.stopped && trained.rl.decisions === rlSteps, `the browser trained ${trained.rl.decisions} decisions`);
+  const rlJson = join(profile, "rl_native.json");
+  execFileSync(bin, ["rl", join(repo, "assets", "reach10.mcap"), "--demo", "1", "--dm", String(trained.rl.dm),
+    "--km", String(trained.rl.km), "--steps", String(rlSteps), "--seed", "1", "--out", rlJson], { stdio: "ignore" });
+  const nativeRl = JSON.parse(await readFile(rlJson, "utf8"));
+  const curveWorst = worstOf(trained.rl.returns.map((r, i) => [r, nativeRl.returns[i]]));
+  figures.rl_returns_vs_native_rel = curveWorst;
+  check(trained.rl.returns.length === nativeRl.returns.length && curveWorst === 0,
+    `the browser's learning curve equals the native one (${trained.rl.returns.length} iterations, relative difference ${curveWorst})`);
+  check(trained.rl.final_error === nativeRl.final_error_m, `the same final error (${trained.rl.final_error} m)`);
+
   // A drag on the J map (at 1280x800 it spans about x 382..556, y 55..230).
   const before = await state();
   await page.mouse.move(470, 150);

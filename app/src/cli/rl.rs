@@ -11,13 +11,13 @@ use std::time::Instant;
 
 use dmpscope_core::Model;
 use dmpscope_core::presets::PAPER_PRESETS;
-use dmpscope_core::rl::{ActionMode, EnvOptions, GreedyRun, REACHED_M, TrainingRun, diverged};
+use dmpscope_core::rl::{ActionMode, EnvOptions, RunReport, TrainingRun};
 use serde_json::json;
 
 use super::inputs::{InputArgs, load_model};
 use super::landscape::{GridArgs, landscape_and_optimum};
 use super::output::{progress_bar, write_text};
-use super::rl_table::{Outcome, table};
+use super::rl_table::{json as run_json, table};
 
 /// What the action is (method.md section 8).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -67,7 +67,8 @@ pub struct Args {
     #[arg(long, value_enum, default_value_t = Mode::Forcing)]
     mode: Mode,
     /// Decisions per episode: 100 (each held 10 integration steps) or 1000
-    /// (one per integration step); any divisor of the demo's steps works.
+    /// (one per integration step); any count from 1 to the demo's
+    /// integration steps works (each held ceil(steps / decisions)).
     #[arg(long, default_value_t = dmpscope_core::rl::env::DECISIONS)]
     decisions: usize,
     /// Environment decisions to train for.
@@ -76,9 +77,10 @@ pub struct Args {
     /// Seed of the first run.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Runs per gain set with --compare (seeds seed, seed+1, ...).
-    #[arg(long, default_value_t = 3)]
-    seeds: u64,
+    /// Runs per gain set, seeds seed, seed+1, ... (default: 3 with
+    /// --compare, else 1).
+    #[arg(long)]
+    seeds: Option<u64>,
     /// Runs trained at once with --compare (default: the machine's cores).
     #[arg(long)]
     jobs: Option<usize>,
@@ -86,7 +88,7 @@ pub struct Args {
     #[arg(long, short)]
     out: Option<PathBuf>,
     /// Write the trained policy (network, log-sds, observation normaliser,
-    /// the environment's scales) as JSON here (one run only).
+    /// the environment's scales) as JSON here (the last seed's).
     #[arg(long, conflicts_with = "compare")]
     save_policy: Option<PathBuf>,
 }
@@ -105,7 +107,7 @@ fn train(
     options: EnvOptions,
     steps: usize,
     bar: &indicatif::ProgressBar,
-) -> anyhow::Result<(Outcome, TrainingRun)> {
+) -> anyhow::Result<(RunReport, TrainingRun)> {
     let mut run = TrainingRun::new(model, demo, job.gains, options, steps, job.seed)
         .map_err(|e| anyhow::anyhow!("{} gains: {e}", job.name))?;
     let start = Instant::now();
@@ -119,25 +121,9 @@ fn train(
             last = s.decisions.min(steps);
         }
     }
-    let seconds = start.elapsed().as_secs_f64();
-    let greedy: GreedyRun = run
-        .greedy()
-        .cloned()
+    let outcome = run
+        .report(model, &job.name, start.elapsed().as_secs_f64())
         .ok_or_else(|| anyhow::anyhow!("training ended before its first iteration"))?;
-    let returns = run.trainer().returns.clone();
-    let outcome = Outcome {
-        name: job.name.clone(),
-        dm: job.gains.0,
-        km: job.gains.1,
-        seed: job.seed,
-        d: model.path_error(demo, &greedy.path),
-        reached: greedy.final_error <= REACHED_M,
-        diverged: diverged(&returns),
-        first_reach: run.first_reach(),
-        run: greedy,
-        returns,
-        seconds,
-    };
     Ok((outcome, run))
 }
 
@@ -173,7 +159,8 @@ fn gain_sets(args: &Args, extracted: Option<(f64, f64)>) -> anyhow::Result<Vec<(
 
 /// Trains and prints the outcome (or the comparison table).
 pub fn run(args: Args) -> anyhow::Result<()> {
-    if args.steps == 0 || args.seeds == 0 || args.jobs == Some(0) {
+    let n_seeds = args.seeds.unwrap_or(if args.compare { 3 } else { 1 });
+    if args.steps == 0 || n_seeds == 0 || args.jobs == Some(0) {
         anyhow::bail!("--steps, --seeds and --jobs must be at least 1");
     }
     let input = &args.input;
@@ -193,11 +180,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         decisions: args.decisions,
         mode: args.mode.into(),
     };
-    let seeds: Vec<u64> = if args.compare {
-        (0..args.seeds).map(|i| args.seed + i).collect()
-    } else {
-        vec![args.seed]
-    };
+    let seeds: Vec<u64> = (0..n_seeds).map(|i| args.seed + i).collect();
     let jobs: Vec<Job> = gain_sets(&args, extracted)?
         .into_iter()
         .flat_map(|(name, dm, km)| {
@@ -214,7 +197,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .min(jobs.len());
     let bar = progress_bar((args.steps * jobs.len()) as u64, "PPO");
     let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<anyhow::Result<(Outcome, TrainingRun)>>>> =
+    let results: Mutex<Vec<Option<anyhow::Result<(RunReport, TrainingRun)>>>> =
         Mutex::new((0..jobs.len()).map(|_| None).collect());
     std::thread::scope(|scope| {
         for _ in 0..workers {
@@ -255,9 +238,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     print!("{text}");
     if let Some(out) = &args.out {
         let value = if outcomes.len() == 1 {
-            outcomes[0].json()
+            run_json(&outcomes[0])
         } else {
-            json!({ "runs": outcomes.iter().map(Outcome::json).collect::<Vec<_>>() })
+            json!({ "runs": outcomes.iter().map(run_json).collect::<Vec<_>>() })
         };
         write_text(Some(out), &serde_json::to_string_pretty(&value)?)?;
     }

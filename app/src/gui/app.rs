@@ -290,7 +290,12 @@ impl eframe::App for DmpApp {
             self.session.update(&self.settings);
         }
         #[cfg(all(target_arch = "wasm32", feature = "testing"))]
-        crate::web::publish_state(self.test_state(&ctx).to_string());
+        {
+            for (steps, seed) in crate::web::take_train_requests() {
+                self.start_test_training(steps, seed, &ctx);
+            }
+            crate::web::publish_state(self.test_state(&ctx).to_string());
+        }
 
         let before = self.settings.clone();
         let (session, s, view) = (&self.session, &mut self.settings, &mut self.view);

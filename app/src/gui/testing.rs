@@ -33,6 +33,26 @@ impl FrameWatch {
 }
 
 impl DmpApp {
+    /// Starts training as the RL panel's Train button with the extracted
+    /// gains does, on the selected demo, with the default environment.
+    pub fn start_test_training(&mut self, steps: usize, seed: u64, ctx: &egui::Context) {
+        let Some(x) = self.session().extraction() else {
+            return;
+        };
+        let request = crate::session::RlRequest {
+            demo: self.view.selected,
+            options: dmpscope_core::rl::EnvOptions::default(),
+            steps,
+            runs: vec![crate::session::RlRun {
+                gains_name: "extracted".into(),
+                dm: x.eval.dm,
+                km: x.eval.km,
+                seed,
+            }],
+        };
+        self.apply(crate::session::Command::StartRl(request).into(), ctx);
+    }
+
     /// What the browser tests read: demos, operating point, optimum,
     /// landscape progress, a checksum of the regenerated paths at the
     /// operating point, Table I's rows, frame and slice timings, messages,
@@ -91,6 +111,16 @@ impl DmpApp {
                 "longest_slice_ms": session.diagnostics_page_time().longest_ms,
             })),
             "repaint_causes": causes,
+            "rl": session.rl().map(|(r, p)| serde_json::json!({
+                "dm": r.runs.first().map(|r| r.dm),
+                "km": r.runs.first().map(|r| r.km),
+                "done": p.done,
+                "decisions": p.decisions.0,
+                "returns": p.returns,
+                "final_error": p.greedy.as_ref().map(|g| g.final_error),
+                "first_reach": p.first_reach.map(|f| f.decisions),
+                "stopped": p.stopped,
+            })),
             "generalised": session.generalised().map(|g| match g {
                 Ok(g) => serde_json::json!({
                     "name": g.primitive.name,

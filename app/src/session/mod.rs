@@ -53,7 +53,7 @@ pub use diagnostics::DiagSnapshot;
 pub use generalise::{GenSource, GenView, GeneraliseSpec};
 pub use jobs::{PageTime, Runner};
 pub use landscape::{Shown, Snapshot};
-pub use rl::{Progress as RlProgress, RlRequest};
+pub use rl::{Progress as RlProgress, RlRequest, RlRun};
 pub use settings::Settings;
 pub use sources::Source;
 pub use status::Status;

@@ -1,54 +1,68 @@
-//! RL training as a [`Work`]: the core's [`TrainingRun`] stepped (one
-//! episode or one minibatch per step, the same numbers as whole
-//! iterations), publishing a [`Progress`] after every iteration: the
-//! learning curve, the policy's latest mean path and when it first reached
-//! the goal. A run that stops (a non-finite action) finishes with its
-//! message and keeps what it had.
+//! RL training as a [`Work`]: one or more [`TrainingRun`]s (a single run,
+//! or the comparison of the extracted gains with the paper's presets over
+//! seeds), each stepped (one episode or one minibatch per step, the same
+//! numbers as whole iterations), publishing a [`Progress`] after every
+//! iteration: the current run's learning curve, the policy's latest mean
+//! path and when it first reached the goal, and the reports of the runs
+//! already finished. A run that stops (a non-finite action) finishes the
+//! work with its message and keeps what it had.
 
 use std::sync::Arc;
 
-use dmpscope_core::rl::{EnvOptions, FirstReach, GreedyRun, TrainingRun};
-use dmpscope_core::{Model, Result};
+use dmpscope_core::rl::{EnvOptions, FirstReach, GreedyRun, RunReport, TrainingRun};
+use dmpscope_core::{Error, Model, Result};
 use web_time::Instant;
 
 use super::jobs::{Step, Work};
 
-/// What to train: a demo of the model, the gains and the environment.
+/// One run of a request: the gains and the seed.
 #[derive(Clone, Debug, PartialEq)]
-pub struct RlRequest {
-    /// The demo (model index).
-    pub demo: usize,
+pub struct RlRun {
     /// What the gains are ("extracted", a preset's name, ...).
     pub gains_name: String,
     /// D/M.
     pub dm: f64,
     /// K/M.
     pub km: f64,
-    /// Decisions per episode and the action mode.
-    pub options: EnvOptions,
-    /// Decisions to train.
-    pub steps: usize,
     /// The seed.
     pub seed: u64,
+}
+
+/// What to train: a demo of the model, the environment, the budget per
+/// run and the runs, in order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RlRequest {
+    /// The demo (model index).
+    pub demo: usize,
+    /// Decisions per episode and the action mode.
+    pub options: EnvOptions,
+    /// Decisions to train per run.
+    pub steps: usize,
+    /// The runs (at least one).
+    pub runs: Vec<RlRun>,
 }
 
 /// What training has reached.
 #[derive(Clone, Debug, Default)]
 pub struct Progress {
-    /// Decisions trained so far, and in all.
+    /// The run under way (index into the request's runs).
+    pub run: usize,
+    /// Decisions trained so far in it, and in all.
     pub decisions: (usize, usize),
-    /// Mean return per iteration (finite: a non-finite one stops the run).
+    /// Its mean return per iteration (finite: a non-finite one stops it).
     pub returns: Vec<f64>,
-    /// The policy's mean run after the latest iteration.
+    /// Its policy's mean run after the latest iteration.
     pub greedy: Option<GreedyRun>,
     /// `d` of that run against the demo, metres.
     pub d: f64,
-    /// When the mean run first ended within 5 mm of the goal.
+    /// When that mean run first ended within 5 mm of the goal.
     pub first_reach: Option<FirstReach>,
-    /// Whether the learning curve so far diverged.
+    /// Whether its learning curve so far diverged.
     pub diverged: bool,
-    /// Training time so far, seconds.
+    /// Its training time so far, seconds.
     pub seconds: f64,
+    /// The runs finished, in order.
+    pub finished: Vec<RunReport>,
     /// Finished, cancelled or stopped.
     pub done: bool,
     /// Cancelled by the user.
@@ -57,7 +71,7 @@ pub struct Progress {
     pub stopped: Option<String>,
 }
 
-/// Trains a PPO agent for one request.
+/// Trains the runs of one request, one after the other.
 pub struct RlWork {
     run: TrainingRun,
     model: Arc<Model>,
@@ -66,17 +80,30 @@ pub struct RlWork {
     progress: Progress,
 }
 
+fn start(model: &Model, request: &RlRequest, i: usize) -> Result<TrainingRun> {
+    let r = request
+        .runs
+        .get(i)
+        .ok_or_else(|| Error::InvalidSetting("an RL request needs at least one run".into()))?;
+    TrainingRun::new(
+        model,
+        request.demo,
+        (r.dm, r.km),
+        request.options,
+        request.steps,
+        r.seed,
+    )
+    .map_err(|e| Error::InvalidSetting(format!("{} gains: {e}", r.gains_name)))
+}
+
 impl RlWork {
-    /// The work of `request` on `model`.
+    /// The work of `request` on `model`; every run's settings are checked
+    /// before the first starts.
     pub fn new(model: Arc<Model>, request: RlRequest) -> Result<Self> {
-        let run = TrainingRun::new(
-            &model,
-            request.demo,
-            (request.dm, request.km),
-            request.options,
-            request.steps,
-            request.seed,
-        )?;
+        for i in 1..request.runs.len() {
+            start(&model, &request, i)?;
+        }
+        let run = start(&model, &request, 0)?;
         let progress = Progress {
             decisions: (0, request.steps),
             ..Progress::default()
@@ -94,6 +121,29 @@ impl RlWork {
     pub fn progress(&self) -> &Progress {
         &self.progress
     }
+
+    /// Finishes the current run and starts the next; `false` when there is
+    /// none.
+    fn next_run(&mut self) -> Result<bool> {
+        let p = &mut self.progress;
+        let name = &self.request.runs[p.run].gains_name;
+        if let Some(report) = self.run.report(&self.model, name, p.seconds) {
+            p.finished.push(report);
+        }
+        if p.run + 1 >= self.request.runs.len() {
+            return Ok(false);
+        }
+        p.run += 1;
+        self.run = start(&self.model, &self.request, p.run)?;
+        self.started = Instant::now();
+        *p = Progress {
+            run: p.run,
+            decisions: (0, self.request.steps),
+            finished: std::mem::take(&mut p.finished),
+            ..Progress::default()
+        };
+        Ok(true)
+    }
 }
 
 impl Work for RlWork {
@@ -101,15 +151,18 @@ impl Work for RlWork {
 
     fn step(&mut self) -> Step<Progress> {
         let seconds = self.started.elapsed().as_secs_f64();
+        let stopped = |p: &mut Progress, why: String| {
+            p.stopped = Some(why);
+            p.done = true;
+            Step::Done(p.clone())
+        };
         let stats = match self.run.step(seconds) {
             Ok(Some(stats)) => stats,
             Ok(None) => return Step::Working,
             Err(e) => {
-                let p = &mut self.progress;
-                p.stopped = Some(e.to_string());
-                p.done = true;
-                p.seconds = seconds;
-                return Step::Done(p.clone());
+                let r = &self.request.runs[self.progress.run];
+                let why = format!("{} gains, seed {}: {e}", r.gains_name, r.seed);
+                return stopped(&mut self.progress, why);
             }
         };
         let p = &mut self.progress;
@@ -122,12 +175,17 @@ impl Work for RlWork {
         p.first_reach = self.run.first_reach();
         p.diverged = self.run.diverged();
         p.seconds = seconds;
-        // Training ends on an iteration's boundary.
-        if self.run.done() {
-            p.done = true;
-            Step::Done(p.clone())
-        } else {
-            Step::Publish(p.clone())
+        // A run ends on an iteration's boundary.
+        if !self.run.done() {
+            return Step::Publish(p.clone());
+        }
+        match self.next_run() {
+            Ok(true) => Step::Publish(self.progress.clone()),
+            Ok(false) => {
+                self.progress.done = true;
+                Step::Done(self.progress.clone())
+            }
+            Err(e) => stopped(&mut self.progress, e.to_string()),
         }
     }
 }

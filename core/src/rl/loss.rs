@@ -3,6 +3,7 @@
 //! Gaussian policy with advantages standardised per minibatch and an
 //! optional entropy bonus, and the critic's squared error.
 
+use super::math;
 use super::mlp::Mlp;
 
 /// Transitions of a batch (the policy's raw outputs as actions).
@@ -26,15 +27,15 @@ pub fn log_prob(a: &[f64], mu: &[f64], log_std: &[f64]) -> f64 {
         .zip(mu)
         .zip(log_std)
         .map(|((a, mu), ls)| {
-            let z = (a - mu) / ls.exp();
-            -0.5 * z * z - ls - 0.5 * (2.0 * std::f64::consts::PI).ln()
+            let z = (a - mu) / math::exp(*ls);
+            -0.5 * z * z - ls - 0.5 * math::ln(2.0 * std::f64::consts::PI)
         })
         .sum()
 }
 
 /// The entropy of the Gaussian policy with log-sds `log_std`.
 pub fn entropy(log_std: &[f64]) -> f64 {
-    let per = 0.5 * (1.0 + (2.0 * std::f64::consts::PI).ln());
+    let per = 0.5 * (1.0 + math::ln(2.0 * std::f64::consts::PI));
     log_std.iter().map(|ls| ls + per).sum()
 }
 
@@ -47,7 +48,7 @@ pub fn standardised(adv: &[f64], idx: &[usize]) -> Vec<f64> {
         return raw;
     }
     let mean = raw.iter().sum::<f64>() / n;
-    let sd = (raw.iter().map(|a| (a - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+    let sd = (raw.iter().map(|a| (a - mean) * (a - mean)).sum::<f64>() / (n - 1.0)).sqrt();
     raw.iter().map(|a| (a - mean) / (sd + 1e-8)).collect()
 }
 
@@ -71,7 +72,7 @@ pub fn actor_loss_grad(
     for (&i, &adv) in idx.iter().zip(&advs) {
         let (mu, trace) = actor.forward(&batch.obs[i]);
         let a = &batch.act[i];
-        let ratio = (log_prob(a, &mu, log_std) - batch.logp[i]).exp();
+        let ratio = math::exp(log_prob(a, &mu, log_std) - batch.logp[i]);
         let clipped = ratio.clamp(1.0 - clip, 1.0 + clip);
         loss -= scale * (ratio * adv).min(clipped * adv);
         // The gradient flows through the unclipped term when it is the min.
@@ -86,7 +87,7 @@ pub fn actor_loss_grad(
         let d_logp = -scale * ratio * adv;
         let mut d_mu = vec![0.0; mu.len()];
         for j in 0..mu.len() {
-            let var = (2.0 * log_std[j]).exp();
+            let var = math::exp(2.0 * log_std[j]);
             let diff = a[j] - mu[j];
             d_mu[j] = d_logp * diff / var;
             grad[np + j] += d_logp * (diff * diff / var - 1.0);

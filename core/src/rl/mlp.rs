@@ -11,6 +11,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::math;
 use crate::synth::Rng;
 
 /// A fully connected network `sizes[0] -> ... -> sizes[last]`.
@@ -37,7 +38,7 @@ impl Mlp {
             let (n_in, n_out) = (w[0], w[1]);
             let gain = if l + 2 == sizes.len() { last_gain } else { 1.0 };
             let sd = gain / (n_in as f64).sqrt();
-            params.extend((0..n_in * n_out).map(|_| rng.normal() * sd));
+            params.extend((0..n_in * n_out).map(|_| math::normal(rng) * sd));
             params.extend(std::iter::repeat_n(0.0, n_out));
         }
         Self {
@@ -98,7 +99,7 @@ impl Mlp {
                 })
                 .collect();
             if l + 1 < layers {
-                out.iter_mut().for_each(|v| *v = v.tanh());
+                out.iter_mut().for_each(|v| *v = math::tanh(*v));
             }
             trace.acts.push(out);
             offset += n_in * n_out + n_out;
@@ -153,7 +154,7 @@ fn orthonormal_rows(rows: usize, cols: usize, rng: &mut Rng) -> Vec<f64> {
     let (count, len) = (rows.min(cols), rows.max(cols));
     let mut basis: Vec<Vec<f64>> = Vec::with_capacity(count);
     while basis.len() < count {
-        let mut v: Vec<f64> = (0..len).map(|_| rng.normal()).collect();
+        let mut v: Vec<f64> = (0..len).map(|_| math::normal(rng)).collect();
         for _ in 0..2 {
             for b in &basis {
                 let dot: f64 = v.iter().zip(b).map(|(x, y)| x * y).sum();
@@ -197,7 +198,9 @@ pub struct Adam {
     pub lr: f64,
     m: Vec<f64>,
     v: Vec<f64>,
-    t: i32,
+    /// `B1^t` and `B2^t` after `t` steps, as running products (the same
+    /// bits on every platform).
+    powers: (f64, f64),
 }
 
 impl Adam {
@@ -207,7 +210,7 @@ impl Adam {
             lr,
             m: vec![0.0; n],
             v: vec![0.0; n],
-            t: 0,
+            powers: (1.0, 1.0),
         }
     }
 
@@ -215,9 +218,9 @@ impl Adam {
     pub fn step(&mut self, params: &mut [f64], grad: &[f64]) {
         const B1: f64 = 0.9;
         const B2: f64 = 0.999;
-        self.t += 1;
-        let c1 = 1.0 - B1.powi(self.t);
-        let c2 = 1.0 - B2.powi(self.t);
+        self.powers = (self.powers.0 * B1, self.powers.1 * B2);
+        let c1 = 1.0 - self.powers.0;
+        let c2 = 1.0 - self.powers.1;
         for i in 0..params.len() {
             self.m[i] = B1 * self.m[i] + (1.0 - B1) * grad[i];
             self.v[i] = B2 * self.v[i] + (1.0 - B2) * grad[i] * grad[i];

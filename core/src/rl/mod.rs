@@ -9,6 +9,7 @@
 
 pub mod env;
 pub mod loss;
+pub mod math;
 pub mod mlp;
 pub mod norm;
 pub mod outcome;
@@ -23,7 +24,7 @@ pub use outcome::diverged;
 pub use point_mass::PointMass;
 pub use policy::Policy;
 pub use ppo::{DEFAULT_DECISIONS, IterStats, PpoConfig, Trainer};
-pub use run::{FirstReach, TrainingRun};
+pub use run::{FirstReach, RunReport, TrainingRun};
 pub use task::{Step, Task};
 
 /// Within this distance of the goal an episode "reached" it (issue 6).

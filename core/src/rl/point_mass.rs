@@ -88,7 +88,7 @@ impl Task for PointMass {
         let done = self.k >= self.n;
         let mut reward = -RHO * u * u * dt;
         if done {
-            reward -= W * (self.x - 1.0).powi(2);
+            reward -= W * (self.x - 1.0) * (self.x - 1.0);
         }
         Step { reward, done }
     }

@@ -16,6 +16,7 @@
 
 use super::env::DmpEnv;
 use super::loss::{Batch, actor_loss_grad, critic_loss_grad, log_prob};
+use super::math;
 use super::mlp::{Adam, Mlp, clip_grad_norm};
 use super::norm::{ReturnScale, RunningStat};
 use super::policy::Policy;
@@ -88,8 +89,8 @@ impl PpoConfig {
         let d = Self::default();
         let p = REFERENCE_DECISIONS as f64 / decisions.max(1) as f64;
         Self {
-            gamma: d.gamma.powf(p),
-            lambda: d.lambda.powf(p),
+            gamma: math::pow(d.gamma, p),
+            lambda: math::pow(d.lambda, p),
             anneal_over: train,
             ..d
         }
@@ -154,7 +155,7 @@ impl<T: Task> Trainer<T> {
         let log_std = task
             .action_size()
             .iter()
-            .map(|s| (config.init_sd * s).max(1e-6).ln())
+            .map(|s| math::ln((config.init_sd * s).max(1e-6)))
             .collect();
         Self {
             actor_opt: Adam::new(actor.params.len() + n_act, config.lr),
@@ -312,7 +313,7 @@ impl<T: Task> Trainer<T> {
             let act: Vec<f64> = mu
                 .iter()
                 .zip(&p.log_std)
-                .map(|(m, ls)| m + ls.exp() * self.rng.normal())
+                .map(|(m, ls)| m + math::exp(*ls) * math::normal(&mut self.rng))
                 .collect();
             if act.iter().any(|a| !a.is_finite()) {
                 return Err(Error::Training(format!(

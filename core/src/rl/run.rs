@@ -1,7 +1,7 @@
 //! One training run as the CLI and the app show it: the [`Trainer`] on a
 //! [`DmpEnv`] stepped to a budget of decisions, the policy's mean run after
-//! every iteration, and the first iteration whose mean run reached the goal
-//! (decisions and seconds). The core has no clock: the caller passes the
+//! every iteration, the first iteration whose mean run reached the goal
+//! (decisions and seconds) and how steadily it stayed reached after. The core has no clock: the caller passes the
 //! seconds so far to [`TrainingRun::step`].
 
 use super::env::{DmpEnv, EnvOptions, GreedyRun};
@@ -19,12 +19,46 @@ pub struct FirstReach {
     pub seconds: f64,
 }
 
+/// A finished (or stopped) run's figures, as the CLI's table and the app's
+/// comparison show them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunReport {
+    /// The gain set's name (a preset's, "Extracted", ...).
+    pub name: String,
+    /// D/M.
+    pub dm: f64,
+    /// K/M.
+    pub km: f64,
+    /// The seed.
+    pub seed: u64,
+    /// The policy's mean run at the end.
+    pub greedy: GreedyRun,
+    /// `d` of that run against the demo, metres.
+    pub d: f64,
+    /// Whether it ends within [`REACHED_M`] of the goal.
+    pub reached: bool,
+    /// Whether the learning curve diverged.
+    pub diverged: bool,
+    /// When the mean first reached.
+    pub first_reach: Option<FirstReach>,
+    /// The share of iterations from the first reach on that reached.
+    pub held: Option<f64>,
+    /// The learning curve (mean return per iteration).
+    pub returns: Vec<f64>,
+    /// Training time, seconds.
+    pub seconds: f64,
+}
+
 /// A training run to a budget.
 pub struct TrainingRun {
     trainer: Trainer<DmpEnv>,
+    demo: usize,
+    seed: u64,
     budget: usize,
     greedy: Option<GreedyRun>,
     first_reach: Option<FirstReach>,
+    /// Iterations since the first reach, and how many of them reached.
+    since: (usize, usize),
 }
 
 impl TrainingRun {
@@ -48,9 +82,12 @@ impl TrainingRun {
         let config = PpoConfig::for_episode(super::Task::decisions(&env), budget);
         Ok(Self {
             trainer: Trainer::new(env, config, seed),
+            demo,
+            seed,
             budget,
             greedy: None,
             first_reach: None,
+            since: (0, 0),
         })
     }
 
@@ -62,11 +99,16 @@ impl TrainingRun {
             return Ok(None);
         };
         let run = self.trainer.task().greedy(self.trainer.policy())?;
-        if self.first_reach.is_none() && run.final_error <= REACHED_M {
+        let reached = run.final_error <= REACHED_M;
+        if self.first_reach.is_none() && reached {
             self.first_reach = Some(FirstReach {
                 decisions: stats.decisions,
                 seconds: elapsed_s,
             });
+        }
+        if self.first_reach.is_some() {
+            self.since.0 += 1;
+            self.since.1 += usize::from(reached);
         }
         self.greedy = Some(run);
         Ok(Some(stats))
@@ -96,6 +138,33 @@ impl TrainingRun {
     /// The first iteration whose mean run reached the goal.
     pub fn first_reach(&self) -> Option<FirstReach> {
         self.first_reach
+    }
+
+    /// The run's figures under `name`, after `seconds` of training (`None`
+    /// before its first iteration); `model` is the one it was made from.
+    pub fn report(&self, model: &Model, name: &str, seconds: f64) -> Option<RunReport> {
+        let greedy = self.greedy.clone()?;
+        let env = self.trainer.task();
+        Some(RunReport {
+            name: name.to_owned(),
+            dm: env.dm,
+            km: env.km,
+            seed: self.seed,
+            d: model.path_error(self.demo, &greedy.path),
+            reached: greedy.final_error <= REACHED_M,
+            diverged: self.diverged(),
+            first_reach: self.first_reach,
+            held: self.held(),
+            returns: self.trainer.returns.clone(),
+            greedy,
+            seconds,
+        })
+    }
+
+    /// The share of the iterations from the first reach on whose mean run
+    /// reached (1 when it stayed reached; `None` before a first reach).
+    pub fn held(&self) -> Option<f64> {
+        (self.since.0 > 0).then(|| self.since.1 as f64 / self.since.0 as f64)
     }
 
     /// Whether the learning curve so far diverged ([`diverged`]).

@@ -13,6 +13,7 @@ mod loading;
 mod plots_panel;
 mod recording;
 mod rl;
+mod rl_table;
 mod settings;
 mod side;
 mod table;

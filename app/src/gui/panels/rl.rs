@@ -1,7 +1,9 @@
 //! The RL panel: pick the gains (operating point, extracted, a paper
-//! preset), train a PPO agent whose action is the forcing term on the demo
-//! shown in the plots, watch the reward curve and cancel; the learned path
-//! is drawn in the 3D view beside the demo and its LfD regeneration.
+//! preset), the action mode and the decisions per episode, train a PPO
+//! agent on the demo shown in the plots, or compare the extracted gains
+//! with every preset over three seeds; watch the reward curves and cancel.
+//! The learned path is drawn in the 3D view beside the demo and its LfD
+//! regeneration; finished runs are listed in a table (`rl_table.rs`).
 
 use dmpscope_core::presets::PAPER_PRESETS;
 use dmpscope_core::rl::{ActionMode, REACHED_M};
@@ -10,7 +12,11 @@ use egui_plot::{Line, Plot, PlotPoints};
 
 use super::super::commands::Command;
 use super::super::view_state::ViewState;
-use crate::session::{self, RlRequest, Session, Settings};
+use super::rl_table::runs_table;
+use crate::session::{self, RlRequest, RlRun, Session, Settings};
+
+/// Seeds per gain set in a comparison.
+const COMPARE_SEEDS: u64 = 3;
 
 fn chosen_gains(session: &Session, s: &Settings, choice: usize) -> Option<(String, f64, f64)> {
     match choice {
@@ -90,16 +96,39 @@ pub fn rl_ui(
             .clicked()
             && let Some((gains_name, dm, km)) = gains
         {
-            let request = RlRequest {
-                demo: view.selected,
+            let runs = vec![RlRun {
                 gains_name,
                 dm,
                 km,
-                options: view.rl.options,
-                steps: view.rl.steps,
                 seed: view.rl.seed,
-            };
-            out.push(session::Command::StartRl(request).into());
+            }];
+            out.push(session::Command::StartRl(request(view, runs)).into());
+        }
+        let extracted = session.extraction().map(|x| (x.eval.dm, x.eval.km));
+        let can = session.model().is_some() && extracted.is_some() && !running;
+        if ui
+            .add_enabled(can, egui::Button::new("Compare"))
+            .on_hover_text(
+                "trains the extracted gains and every paper preset, 3 seeds each, one after the other",
+            )
+            .on_disabled_hover_text("needs demos and the extracted gains")
+            .clicked()
+            && let Some((dm, km)) = extracted
+        {
+            let sets = std::iter::once(("Extracted".to_owned(), dm, km))
+                .chain(PAPER_PRESETS.iter().map(|p| (p.name.to_owned(), p.dm, p.km)));
+            let seed = view.rl.seed;
+            let runs = sets
+                .flat_map(|(name, dm, km)| {
+                    (0..COMPARE_SEEDS).map(move |i| RlRun {
+                        gains_name: name.clone(),
+                        dm,
+                        km,
+                        seed: seed + i,
+                    })
+                })
+                .collect();
+            out.push(session::Command::StartRl(request(view, runs)).into());
         }
         if running && ui.button("Cancel").clicked() {
             out.push(session::Command::CancelRl.into());
@@ -109,12 +138,21 @@ pub fn rl_ui(
         ui.weak("Trains on the demo shown in the plots.");
         return;
     };
+    let Some(current) = request.runs.get(p.run) else {
+        return;
+    };
+    let of = if request.runs.len() > 1 {
+        format!("run {}/{} · ", p.run + 1, request.runs.len())
+    } else {
+        String::new()
+    };
     ui.label(format!(
-        "demo {} · {} (D/M {:.3}, K/M {:.3}) · {} · {} per episode",
+        "{of}demo {} · {} seed {} (D/M {:.3}, K/M {:.3}) · {} · {} per episode",
         request.demo + 1,
-        request.gains_name,
-        request.dm,
-        request.km,
+        current.gains_name,
+        current.seed,
+        current.dm,
+        current.km,
         request.options.mode.name(),
         request.options.decisions
     ));
@@ -159,16 +197,38 @@ pub fn rl_ui(
     if let Some(why) = &p.stopped {
         ui.colored_label(Color32::from_rgb(240, 110, 110), why);
     }
-    let points: PlotPoints<'_> = p
-        .returns
-        .iter()
-        .enumerate()
-        .map(|(i, r)| [i as f64, *r])
-        .collect();
+    let curve = |returns: &[f64]| -> PlotPoints<'static> {
+        returns
+            .iter()
+            .enumerate()
+            .map(|(i, r)| [i as f64, *r])
+            .collect()
+    };
     Plot::new("rl returns")
         .height(110.0)
         .y_axis_label("mean return")
         .x_axis_label("iteration")
         .allow_scroll(false)
-        .show(ui, |plot| plot.line(Line::new("return", points)));
+        .show(ui, |plot| {
+            for r in &p.finished {
+                plot.line(Line::new(format!("{} {}", r.name, r.seed), curve(&r.returns)).width(1.0));
+            }
+            // A finished run's curve is already among the finished.
+            if !p.done || p.finished.is_empty() {
+                plot.line(Line::new("return", curve(&p.returns)));
+            }
+        });
+    if !p.finished.is_empty() && request.runs.len() > 1 {
+        runs_table(ui, &p.finished);
+    }
+}
+
+/// A request for `runs` on the selected demo with the panel's settings.
+fn request(view: &ViewState, runs: Vec<RlRun>) -> RlRequest {
+    RlRequest {
+        demo: view.selected,
+        options: view.rl.options,
+        steps: view.rl.steps,
+        runs,
+    }
 }
