@@ -90,7 +90,11 @@ fn rl_options_residual_mode_a_thousand_decisions_and_the_saved_policy() {
     );
     let r: serde_json::Value =
         serde_json::from_slice(&std::fs::read(&out).expect("json")).expect("json");
-    assert_eq!(r["returns"].as_array().map(Vec::len), Some(1), "4 episodes of 1000");
+    assert_eq!(
+        r["returns"].as_array().map(Vec::len),
+        Some(1),
+        "4 episodes of 1000"
+    );
     assert!(r["diverged"].is_boolean());
     let p: serde_json::Value =
         serde_json::from_slice(&std::fs::read(&policy).expect("policy")).expect("json");
@@ -99,9 +103,15 @@ fn rl_options_residual_mode_a_thousand_decisions_and_the_saved_policy() {
     assert_eq!(p["integration_steps_per_decision"], 1);
     let sizes = p["policy"]["actor"]["sizes"].as_array().expect("sizes");
     assert_eq!(sizes.len(), 4, "7-64-64-3");
-    let mean = p["policy"]["obs_norm"]["mean"].as_array().expect("normaliser");
+    let mean = p["policy"]["obs_norm"]["mean"]
+        .as_array()
+        .expect("normaliser");
     assert_eq!(mean.len(), 7);
-    assert!(p["policy"]["obs_norm"]["count"].as_f64().is_some_and(|c| c > 4000.0));
+    assert!(
+        p["policy"]["obs_norm"]["count"]
+            .as_f64()
+            .is_some_and(|c| c > 4000.0)
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -122,11 +132,16 @@ fn rl_compare_reports_each_gain_set() {
     let stdout = text(&o.stdout);
     for name in ["Extracted", "Ours", "Hrstc1", "Hrstc2", "Hrstc3", "Hrstc4"] {
         assert!(
-            stdout.lines().any(|l| l.starts_with(name) && l.contains("reached") && l.contains("/2, stable")),
+            stdout
+                .lines()
+                .any(|l| l.starts_with(name) && l.contains("reached") && l.contains("/2, stable")),
             "{name}: {stdout}"
         );
     }
-    assert!(stdout.contains("1st reach") && stdout.contains("stable"), "{stdout}");
+    assert!(
+        stdout.contains("1st reach") && stdout.contains("stable"),
+        "{stdout}"
+    );
 }
 
 #[test]

@@ -143,14 +143,16 @@ fn bad_input_gets_clear_errors() {
             decisions,
             mode: ActionMode::Forcing,
         };
-        let e = DmpEnv::new(&m, 0, 10.0, 10.0, opts).expect_err("decisions").to_string();
+        let e = DmpEnv::new(&m, 0, 10.0, 10.0, opts)
+            .expect_err("decisions")
+            .to_string();
         assert!(e.contains("decisions per episode must be 1 to 1000"), "{e}");
     }
     let e = DmpEnv::new(&m, 3, 10.0, 10.0, EnvOptions::default()).expect_err("no demo");
     assert!(e.to_string().contains("no demo 4"), "{e}");
     // A demo that ends where it starts: a closed loop.
-    let loaded = load_bytes("reach10.mcap", include_bytes!("../../assets/reach10.mcap"))
-        .expect("sample");
+    let loaded =
+        load_bytes("reach10.mcap", include_bytes!("../../assets/reach10.mcap")).expect("sample");
     let mut raw = loaded.demos[0].clone();
     let n = raw.positions.len();
     for (k, p) in raw.positions.iter_mut().enumerate() {
@@ -162,7 +164,10 @@ fn bad_input_gets_clear_errors() {
     let e = DmpEnv::new(&loop_model, 0, 10.0, 10.0, EnvOptions::default())
         .expect_err("no motion")
         .to_string();
-    assert!(e.contains("from its start") && e.contains("no motion to learn"), "{e}");
+    assert!(
+        e.contains("from its start") && e.contains("no motion to learn"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -344,7 +349,12 @@ fn the_initial_policy_deviation_follows_the_demos_forcing_term() {
     let size = e.action_size();
     let t = Trainer::new(e, PpoConfig::default(), 1);
     for (ls, s) in t.policy().log_std.iter().zip(&size) {
-        assert!((ls.exp() - 0.1 * s).abs() < 1e-12 * s, "{} vs {}", ls.exp(), s);
+        assert!(
+            (ls.exp() - 0.1 * s).abs() < 1e-12 * s,
+            "{} vs {}",
+            ls.exp(),
+            s
+        );
     }
     // The size is the fitted forcing term's RMS over the action scale.
     let f = m.forcing(0, 10.73, 20.71);
@@ -383,7 +393,9 @@ fn orthogonal_layers_are_orthonormal_times_their_gain() {
 #[test]
 fn normalisers_track_mean_variance_and_return_scale() {
     let mut s = RunningStat::new(2);
-    let xs: Vec<[f64; 2]> = (0..1000).map(|k| [k as f64, 3.0 - 0.5 * k as f64]).collect();
+    let xs: Vec<[f64; 2]> = (0..1000)
+        .map(|k| [k as f64, 3.0 - 0.5 * k as f64])
+        .collect();
     for x in &xs {
         s.update(x);
     }
@@ -437,7 +449,10 @@ fn ppo_solves_the_point_mass_and_a_broken_ppo_does_not() {
         -t.policy().run(&mut task).expect("run").ret
     };
     let learned = train(PpoConfig::default().lr);
-    assert!(learned <= 1.10 * best, "cost {learned} against the optimum {best}");
+    assert!(
+        learned <= 1.10 * best,
+        "cost {learned} against the optimum {best}"
+    );
     for broken in [0.0, -PpoConfig::default().lr] {
         let c = train(broken);
         assert!(c > 2.0 * best, "a broken PPO (lr {broken}) got {c}");

@@ -202,8 +202,8 @@ fn diagnostics_figures(
 /// forward + backward + Adam, as `/tmp` probes of burn measured it) and one
 /// PPO iteration (4 episodes + 8 epochs of updates).
 fn rl_figures(model: &dmpscope_core::Model) -> anyhow::Result<()> {
-    use dmpscope_core::rl::mlp::{Adam, Mlp};
     use dmpscope_core::rl::loss::{Batch, critic_loss_grad};
+    use dmpscope_core::rl::mlp::{Adam, Mlp};
     use dmpscope_core::rl::{DmpEnv, EnvOptions, PpoConfig, Trainer};
     let mut rng = dmpscope_core::synth::Rng::new(1);
     let mut critic = Mlp::new(&[7, 64, 64, 1], &mut rng, 1.0);

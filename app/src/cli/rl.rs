@@ -128,7 +128,10 @@ fn train(
 }
 
 /// The gain sets the arguments ask for.
-fn gain_sets(args: &Args, extracted: Option<(f64, f64)>) -> anyhow::Result<Vec<(String, f64, f64)>> {
+fn gain_sets(
+    args: &Args,
+    extracted: Option<(f64, f64)>,
+) -> anyhow::Result<Vec<(String, f64, f64)>> {
     let mut sets = Vec::new();
     if let (Some(dm), Some(km)) = (args.dm, args.km) {
         for (flag, v) in [("--dm", dm), ("--km", km)] {
@@ -149,7 +152,11 @@ fn gain_sets(args: &Args, extracted: Option<(f64, f64)>) -> anyhow::Result<Vec<(
     } else if let Some((dm, km)) = extracted {
         sets.push(("Extracted".into(), dm, km));
         if args.compare {
-            sets.extend(PAPER_PRESETS.iter().map(|p| (p.name.to_owned(), p.dm, p.km)));
+            sets.extend(
+                PAPER_PRESETS
+                    .iter()
+                    .map(|p| (p.name.to_owned(), p.dm, p.km)),
+            );
         }
     } else {
         anyhow::bail!("choose the gains: --dm X --km Y, --preset NAME, --extracted or --compare");

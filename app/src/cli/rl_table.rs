@@ -34,14 +34,27 @@ pub fn table(outcomes: &[RunReport]) -> String {
     let _ = writeln!(
         text,
         "{:<10} {:>8} {:>9} {:>5} {:>8} {:>9} {:>8} {:>8} {:>11} {:>6} {:>6} {:>8} {:>6}  learning curve (mean return: first -> middle -> last)",
-        "gains", "D/M", "K/M", "seed", "reached", "error mm", "d mm", "a_peak",
-        "1st reach", "at s", "held", "train s", "stable"
+        "gains",
+        "D/M",
+        "K/M",
+        "seed",
+        "reached",
+        "error mm",
+        "d mm",
+        "a_peak",
+        "1st reach",
+        "at s",
+        "held",
+        "train s",
+        "stable"
     );
     for o in outcomes {
         let (fd, fs) = o.first_reach.map_or(("-".to_owned(), "-".to_owned()), |f| {
             (f.decisions.to_string(), format!("{:.1}", f.seconds))
         });
-        let held = o.held.map_or("-".to_owned(), |h| format!("{:.0}%", 100.0 * h));
+        let held = o
+            .held
+            .map_or("-".to_owned(), |h| format!("{:.0}%", 100.0 * h));
         let _ = writeln!(
             text,
             "{:<10} {:>8.3} {:>9.3} {:>5} {:>8} {:>9.3} {:>8.3} {:>8.2} {:>11} {:>6} {:>6} {:>8.1} {:>6}  {}",

@@ -132,7 +132,9 @@ impl DmpEnv {
         let n = d.len();
         let bad = |why: String| Err(Error::InvalidSetting(format!("{}: {why}", d.name)));
         if n < 2 {
-            return bad(format!("RL needs a demo of at least 2 grid points, it has {n}"));
+            return bad(format!(
+                "RL needs a demo of at least 2 grid points, it has {n}"
+            ));
         }
         if !(dm.is_finite() && km.is_finite() && dm >= 0.0 && km >= 0.0) {
             return bad(format!(

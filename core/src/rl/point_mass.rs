@@ -53,7 +53,10 @@ impl PointMass {
             .collect();
         let bb: f64 = b.iter().map(|v| v * v).sum();
         let c = W / (RHO * dt + W * bb);
-        (W * RHO * dt / (RHO * dt + W * bb), b.iter().map(|v| c * v).collect())
+        (
+            W * RHO * dt / (RHO * dt + W * bb),
+            b.iter().map(|v| c * v).collect(),
+        )
     }
 }
 

@@ -181,6 +181,12 @@ impl<T: Task> Trainer<T> {
         self.decisions
     }
 
+    /// Whether an iteration is under way (collected or updating, not yet
+    /// summarised).
+    pub fn mid_iteration(&self) -> bool {
+        self.pending.is_some()
+    }
+
     /// The task.
     pub fn task(&self) -> &T {
         &self.task
@@ -272,8 +278,14 @@ impl<T: Task> Trainer<T> {
         let end = ((chunk + 1) * mb).min(pending.order.len());
         let idx = &pending.order[chunk * mb..end];
         let p = &mut self.policy;
-        let (loss, mut g) =
-            actor_loss_grad(&p.actor, &p.log_std, &pending.batch, idx, c.clip, c.ent_coef);
+        let (loss, mut g) = actor_loss_grad(
+            &p.actor,
+            &p.log_std,
+            &pending.batch,
+            idx,
+            c.clip,
+            c.ent_coef,
+        );
         let (vloss, mut vg) = critic_loss_grad(&self.critic, &pending.batch, idx);
         if !(loss.is_finite() && vloss.is_finite()) {
             return Err(Error::Training(format!(

@@ -4,10 +4,10 @@
 //! (decisions and seconds) and how steadily it stayed reached after. The core has no clock: the caller passes the
 //! seconds so far to [`TrainingRun::step`].
 
+use super::REACHED_M;
 use super::env::{DmpEnv, EnvOptions, GreedyRun};
 use super::outcome::diverged;
 use super::ppo::{IterStats, PpoConfig, Trainer};
-use super::REACHED_M;
 use crate::{Error, Model, Result};
 
 /// When a run's mean first ended within [`REACHED_M`] of the goal.
@@ -114,10 +114,11 @@ impl TrainingRun {
         Ok(Some(stats))
     }
 
-    /// Whether the budget is spent (training ends on an iteration's
-    /// boundary, so it may take a little more).
+    /// Whether the budget is spent and the iteration that spent it is
+    /// complete (training ends on an iteration's boundary, so it may take a
+    /// little more).
     pub fn done(&self) -> bool {
-        self.trainer.decisions() >= self.budget
+        self.trainer.decisions() >= self.budget && !self.trainer.mid_iteration()
     }
 
     /// The budget in decisions.

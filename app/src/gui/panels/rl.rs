@@ -211,7 +211,9 @@ pub fn rl_ui(
         .allow_scroll(false)
         .show(ui, |plot| {
             for r in &p.finished {
-                plot.line(Line::new(format!("{} {}", r.name, r.seed), curve(&r.returns)).width(1.0));
+                plot.line(
+                    Line::new(format!("{} {}", r.name, r.seed), curve(&r.returns)).width(1.0),
+                );
             }
             // A finished run's curve is already among the finished.
             if !p.done || p.finished.is_empty() {

@@ -17,8 +17,16 @@ pub fn runs_table(ui: &mut egui::Ui, runs: &[RunReport]) {
                 .num_columns(10)
                 .show(ui, |ui| {
                     for h in [
-                        "gains", "seed", "reached", "error mm", "d mm", "a_peak", "1st reach",
-                        "at s", "held", "stable",
+                        "gains",
+                        "seed",
+                        "reached",
+                        "error mm",
+                        "d mm",
+                        "a_peak",
+                        "1st reach",
+                        "at s",
+                        "held",
+                        "stable",
                     ] {
                         ui.strong(h);
                     }
@@ -45,7 +53,10 @@ pub fn runs_table(ui: &mut egui::Ui, runs: &[RunReport]) {
                                 ui.label("-");
                             }
                         }
-                        ui.label(r.held.map_or("-".to_owned(), |h| format!("{:.0}%", 100.0 * h)));
+                        ui.label(
+                            r.held
+                                .map_or("-".to_owned(), |h| format!("{:.0}%", 100.0 * h)),
+                        );
                         ui.label(if r.diverged { "no" } else { "yes" });
                         ui.end_row();
                     }
