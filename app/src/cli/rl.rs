@@ -93,6 +93,9 @@ pub struct Args {
     save_policy: Option<PathBuf>,
 }
 
+/// A finished run: its figures and the run (for `--save-policy`).
+type Trained = anyhow::Result<(RunReport, TrainingRun)>;
+
 /// A run to do.
 struct Job {
     name: String,
@@ -107,7 +110,7 @@ fn train(
     options: EnvOptions,
     steps: usize,
     bar: &indicatif::ProgressBar,
-) -> anyhow::Result<(RunReport, TrainingRun)> {
+) -> Trained {
     let mut run = TrainingRun::new(model, demo, job.gains, options, steps, job.seed)
         .map_err(|e| anyhow::anyhow!("{} gains: {e}", job.name))?;
     let start = Instant::now();
@@ -204,8 +207,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .min(jobs.len());
     let bar = progress_bar((args.steps * jobs.len()) as u64, "PPO");
     let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<anyhow::Result<(RunReport, TrainingRun)>>>> =
-        Mutex::new((0..jobs.len()).map(|_| None).collect());
+    let results: Mutex<Vec<Option<Trained>>> = Mutex::new((0..jobs.len()).map(|_| None).collect());
     std::thread::scope(|scope| {
         for _ in 0..workers {
             scope.spawn(|| {

@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use dmpscope_core::rl::RunReport;
+use dmpscope_core::rl::{RunReport, summarise};
 use serde_json::json;
 
 /// A run as JSON.
@@ -74,25 +74,17 @@ pub fn table(outcomes: &[RunReport]) -> String {
             curve(&o.returns)
         );
     }
-    let mut names: Vec<&str> = Vec::new();
-    for o in outcomes {
-        if !names.contains(&o.name.as_str()) {
-            names.push(&o.name);
-        }
-    }
     if outcomes.len() > 1 {
         text.push('\n');
-        for name in names {
-            let runs: Vec<&RunReport> = outcomes.iter().filter(|o| o.name == name).collect();
-            let reached = runs.iter().filter(|o| o.reached).count();
-            let stable = runs.iter().filter(|o| !o.diverged).count();
-            let mut errs: Vec<f64> = runs.iter().map(|o| o.greedy.final_error * 1e3).collect();
-            errs.sort_by(f64::total_cmp);
-            let median = errs[errs.len() / 2];
+        for set in summarise(outcomes) {
             let _ = writeln!(
                 text,
-                "{name:<10} reached {reached}/{n}, stable {stable}/{n}, median final error {median:.2} mm",
-                n = runs.len()
+                "{:<10} reached {}/{n}, stable {}/{n}, median final error {:.2} mm",
+                set.name,
+                set.reached,
+                set.stable,
+                set.median_final_error * 1e3,
+                n = set.runs
             );
         }
     }

@@ -152,7 +152,7 @@ impl DmpEnv {
         let goal = d.goal;
         let delta: [f64; 3] = std::array::from_fn(|a| goal[a] - y0[a]);
         let reach = norm3(delta);
-        if !(reach >= MIN_REACH_M) {
+        if reach.is_nan() || reach < MIN_REACH_M {
             return bad(format!(
                 "its goal is {:.3} mm from its start (at least {} mm is needed): there is no motion to learn",
                 reach * 1e3,

@@ -24,7 +24,7 @@ pub use outcome::diverged;
 pub use point_mass::PointMass;
 pub use policy::Policy;
 pub use ppo::{DEFAULT_DECISIONS, IterStats, PpoConfig, Trainer};
-pub use run::{FirstReach, RunReport, TrainingRun};
+pub use run::{FirstReach, RunReport, SetSummary, TrainingRun, summarise};
 pub use task::{Step, Task};
 
 /// Within this distance of the goal an episode "reached" it (issue 6).

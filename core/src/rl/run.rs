@@ -49,6 +49,46 @@ pub struct RunReport {
     pub seconds: f64,
 }
 
+/// The runs of one gain set, summarised.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SetSummary {
+    /// The gain set's name.
+    pub name: String,
+    /// Its runs.
+    pub runs: usize,
+    /// How many reached.
+    pub reached: usize,
+    /// How many did not diverge.
+    pub stable: usize,
+    /// The median final error, metres (the upper median for an even count).
+    pub median_final_error: f64,
+}
+
+/// One summary per gain set of `reports`, in order of first appearance.
+pub fn summarise(reports: &[RunReport]) -> Vec<SetSummary> {
+    let mut names: Vec<&str> = Vec::new();
+    for r in reports {
+        if !names.contains(&r.name.as_str()) {
+            names.push(&r.name);
+        }
+    }
+    names
+        .into_iter()
+        .map(|name| {
+            let of: Vec<&RunReport> = reports.iter().filter(|r| r.name == name).collect();
+            let mut errs: Vec<f64> = of.iter().map(|r| r.greedy.final_error).collect();
+            errs.sort_by(f64::total_cmp);
+            SetSummary {
+                name: name.to_owned(),
+                runs: of.len(),
+                reached: of.iter().filter(|r| r.reached).count(),
+                stable: of.iter().filter(|r| !r.diverged).count(),
+                median_final_error: errs[errs.len() / 2],
+            }
+        })
+        .collect()
+}
+
 /// A training run to a budget.
 pub struct TrainingRun {
     trainer: Trainer<DmpEnv>,

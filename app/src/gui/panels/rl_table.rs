@@ -4,7 +4,7 @@
 //! how steadily it stayed reached and whether training stayed stable; then
 //! one line per gain set.
 
-use dmpscope_core::rl::RunReport;
+use dmpscope_core::rl::{RunReport, summarise};
 use eframe::egui::{self, Color32};
 
 /// The table of `runs`.
@@ -62,15 +62,10 @@ pub fn runs_table(ui: &mut egui::Ui, runs: &[RunReport]) {
                     }
                 });
         });
-    let mut names: Vec<&str> = Vec::new();
-    for r in runs {
-        if !names.contains(&r.name.as_str()) {
-            names.push(&r.name);
-        }
-    }
-    for name in names {
-        let of: Vec<&RunReport> = runs.iter().filter(|r| r.name == name).collect();
-        let reached = of.iter().filter(|r| r.reached).count();
-        ui.label(format!("{name}: reached {reached}/{}", of.len()));
+    for set in summarise(runs) {
+        ui.label(format!(
+            "{}: reached {}/{}",
+            set.name, set.reached, set.runs
+        ));
     }
 }
