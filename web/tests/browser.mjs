@@ -181,9 +181,15 @@ try {
   const nativeRl = JSON.parse(await readFile(rlJson, "utf8"));
   const curveWorst = worstOf(trained.rl.returns.map((r, i) => [r, nativeRl.returns[i]]));
   figures.rl_returns_vs_native_rel = curveWorst;
-  check(trained.rl.returns.length === nativeRl.returns.length && curveWorst === 0,
-    `the browser's learning curve equals the native one (${trained.rl.returns.length} iterations, relative difference ${curveWorst})`);
-  check(trained.rl.final_error === nativeRl.final_error_m, `the same final error (${trained.rl.final_error} m)`);
+  // PPO's own transcendentals are portable (core::rl::math), but the DMP
+  // the task is built on is fitted with the platform's exp (as the
+  // landscape), so the two may differ in the last bit: 1e-12 is "the same
+  // numbers" and still fails on any real difference in the learner.
+  const finalRel = rel(trained.rl.final_error, nativeRl.final_error_m);
+  figures.rl_final_error_vs_native_rel = finalRel;
+  check(trained.rl.returns.length === nativeRl.returns.length && curveWorst <= 1e-12,
+    `the browser's learning curve equals the native one (${trained.rl.returns.length} iterations, relative difference ${curveWorst.toExponential(2)})`);
+  check(finalRel <= 1e-12, `the same final error (${trained.rl.final_error} m, relative difference ${finalRel.toExponential(2)})`);
 
   // A drag on the J map (at 1280x800 it spans about x 382..556, y 55..230).
   const before = await state();
