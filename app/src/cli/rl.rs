@@ -81,7 +81,8 @@ pub struct Args {
     /// --compare, else 1).
     #[arg(long)]
     seeds: Option<u64>,
-    /// Runs trained at once with --compare (default: the machine's cores).
+    /// Runs trained at once when there are several (--compare, --seeds;
+    /// default: the machine's cores).
     #[arg(long)]
     jobs: Option<usize>,
     /// Write the results as JSON here.
