@@ -48,6 +48,6 @@ rm -rf "$out"
 mkdir -p "$out"
 wasm-bindgen --target web --no-typescript --out-dir "$out" --out-name dmpscope \
   target/wasm32-unknown-unknown/release/dmpscope.wasm
-cp web/index.html "$out/"
+cp web/index.html web/worker.js "$out/"
 ls -l "$out" >&2
 echo "built $out; serve it with: python3 -m http.server -d $out 8080" >&2

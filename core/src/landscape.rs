@@ -174,6 +174,51 @@ pub struct Landscape {
 }
 
 impl Landscape {
+    /// A landscape over `grid` with no point computed yet (all NaN).
+    pub fn blank(grid: Grid) -> Self {
+        Self::empty(grid)
+    }
+
+    /// `[sum d, S, max a_peak]` of `points` (`(i_dm, i_km)` of this grid)
+    /// on this thread, without storing them: what a worker computes for a
+    /// tile. Each point's numbers are the same bits whatever tile or order
+    /// it is computed in (the kernels' lanes are independent).
+    pub fn evaluate(&self, model: &Model, points: &[(u32, u32)]) -> Result<Vec<[f64; 3]>> {
+        let (n_dm, n_km) = (self.grid.dm.n as u32, self.grid.km.n as u32);
+        if let Some(&(i, j)) = points.iter().find(|&&(i, j)| i >= n_dm || j >= n_km) {
+            return Err(Error::InvalidSetting(format!(
+                "grid point ({i}, {j}) is outside the {n_dm} x {n_km} grid"
+            )));
+        }
+        Ok(eval_points(model, self, points))
+    }
+
+    /// Stores the numbers of `points` computed elsewhere
+    /// ([`Landscape::evaluate`]); a point stored twice counts once.
+    pub fn store(&mut self, points: &[(u32, u32)], values: &[[f64; 3]]) -> Result<()> {
+        if points.len() != values.len() {
+            return Err(Error::InvalidSetting(format!(
+                "{} points but {} values",
+                points.len(),
+                values.len()
+            )));
+        }
+        let (n_dm, n_km) = (self.grid.dm.n as u32, self.grid.km.n as u32);
+        if let Some(&(i, j)) = points.iter().find(|&&(i, j)| i >= n_dm || j >= n_km) {
+            return Err(Error::InvalidSetting(format!(
+                "grid point ({i}, {j}) is outside the {n_dm} x {n_km} grid"
+            )));
+        }
+        let fresh = points
+            .iter()
+            .filter(|&&(i, j)| self.s[self.index(i as usize, j as usize)].is_nan())
+            .count();
+        store(self, points, values);
+        self.filled += fresh;
+        self.filled -= points.len();
+        Ok(())
+    }
+
     fn empty(grid: Grid) -> Self {
         let len = grid.len();
         Self {

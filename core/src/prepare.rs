@@ -35,8 +35,9 @@ impl Default for PrepSettings {
 }
 
 /// A demonstration on the unit-time grid `s = t / T`, shifted so that it
-/// starts at the origin.
-#[derive(Clone, Debug, PartialEq)]
+/// starts at the origin. Serialisable, so that a model can be rebuilt
+/// elsewhere (the browser's workers) from its demos and settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PreparedDemo {
     /// The demo's name, `file:topic`.
     pub name: String,

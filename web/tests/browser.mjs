@@ -136,6 +136,15 @@ try {
   const worst = Math.max(rel(done.optimum.dm, native.dm), rel(done.optimum.km, native.km), rel(done.optimum.j, native.j));
   figures.optimum_vs_native_rel = worst;
   check(worst <= 1e-12, `the browser's optimum equals the native one (relative difference ${worst.toExponential(2)})`);
+  // Issue 15: the landscape is computed by Web Workers, none of it on the
+  // page's thread (which only moves tiles and draws).
+  const cores = await page.evaluate(() => navigator.hardwareConcurrency);
+  figures.workers = full.workers;
+  figures.hardware_concurrency = cores;
+  check(full.workers && full.workers.workers === Math.min(8, Math.max(2, cores)) && full.workers.alive === full.workers.workers,
+    `${full.workers?.workers} workers for ${cores} cores, all alive`);
+  check(full.workers.tiles_from_workers >= Math.ceil(full.landscape.total / 128) && full.landscape_points_here === 0,
+    `the workers computed all ${full.workers.tiles_from_workers} tiles, the page none of the ${full.landscape.total} points`);
 
   // The diagnostics, time-sliced on the page's thread: the same numbers as
   // the native `extract --json`.
@@ -190,6 +199,22 @@ try {
   check(trained.rl.returns.length === nativeRl.returns.length && curveWorst <= 1e-12,
     `the browser's learning curve equals the native one (${trained.rl.returns.length} iterations, relative difference ${curveWorst.toExponential(2)})`);
   check(finalRel <= 1e-12, `the same final error (${trained.rl.final_error} m, relative difference ${finalRel.toExponential(2)})`);
+
+  // A new grid while the landscape computes cancels it: the workers' tiles
+  // of the old grid never reach the new one, and the 128 x 128 landscape
+  // computed again in the workers gives the native optimum again.
+  const tilesBefore = (await state()).workers.tiles_from_workers;
+  // (The hook is read in a frame: a pointer move makes one.)
+  await page.evaluate(() => window.dmpscope_grid(96));
+  await page.mouse.move(640, 700);
+  await until("the 96 x 96 landscape to start", (s) => s.landscape.total === 96 * 96 && s.landscape.done > 0, 20000);
+  await page.evaluate(() => window.dmpscope_grid(128));
+  await page.mouse.move(650, 700);
+  const regrid = await until("the 128 x 128 landscape again", (s) => s.landscape.total === 16384 && s.landscape.done === 16384, 60000);
+  const reopt = await until("its optimum", (s) => s.optimum !== null, 30000);
+  const regridWorst = Math.max(rel(reopt.optimum.dm, native.dm), rel(reopt.optimum.km, native.km), rel(reopt.optimum.j, native.j));
+  check(regrid.workers.tiles_from_workers - tilesBefore >= 128 && regrid.landscape_points_here === 0 && regridWorst <= 1e-12,
+    `a new grid cancelled the landscape; the workers computed the next one (${regrid.workers.tiles_from_workers - tilesBefore} tiles) and its optimum equals the native one (${regridWorst.toExponential(2)})`);
 
   // A drag on the J map (at 1280x800 it spans about x 382..556, y 55..230).
   const before = await state();

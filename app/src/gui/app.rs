@@ -294,6 +294,11 @@ impl eframe::App for DmpApp {
             for (steps, seed) in crate::web::take_train_requests() {
                 self.start_test_training(steps, seed, &ctx);
             }
+            for n in crate::web::take_grid_requests() {
+                self.settings.grid.dm.n = n;
+                self.settings.grid.km.n = n;
+                self.session.update(&self.settings);
+            }
             crate::web::publish_state(self.test_state(&ctx).to_string());
         }
 

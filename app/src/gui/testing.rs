@@ -95,6 +95,8 @@ impl DmpApp {
                 "dm": x.eval.dm, "km": x.eval.km, "j": x.j,
             })),
             "landscape": {"done": done, "total": total},
+            "landscape_points_here": crate::session::landscape::points_computed_here(),
+            "workers": workers(),
             "regen_checksum": regen_checksum,
             "rows": rows,
             "frames": self.frame_watch.frames,
@@ -134,5 +136,17 @@ impl DmpApp {
                 Err(e) => serde_json::json!({ "error": e }),
             }),
         })
+    }
+}
+
+/// The browser's worker pool, as the tests see it (`null` natively).
+fn workers() -> serde_json::Value {
+    #[cfg(target_arch = "wasm32")]
+    {
+        serde_json::to_value(crate::web::pool::stats()).unwrap_or_default()
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        serde_json::Value::Null
     }
 }

@@ -23,6 +23,9 @@ use web_time::{Duration, Instant};
 pub enum Step<T> {
     /// Keep going; nothing new to show.
     Working,
+    /// Nothing to do until an answer from elsewhere arrives (the browser's
+    /// workers): the slice ends early and the page's thread is free.
+    Waiting,
     /// Keep going; here is something to show meanwhile (a preview).
     Publish(T),
     /// Finished with this result.
@@ -195,6 +198,10 @@ fn run_thread<W: Work>(mut work: W, shared: &Shared<W::Output>, wake: &dyn Fn())
     while !shared.cancel.load(Ordering::Relaxed) {
         let (value, done) = match work.step() {
             Step::Working => continue,
+            Step::Waiting => {
+                std::thread::sleep(Duration::from_millis(1));
+                continue;
+            }
             Step::Publish(v) => (v, false),
             Step::Done(v) => (v, true),
         };
@@ -257,6 +264,7 @@ async fn run_slices<W: Work>(
         while !done && start.elapsed() < SLICE {
             let value = match work.step() {
                 Step::Working => continue,
+                Step::Waiting => break,
                 Step::Publish(v) => v,
                 Step::Done(v) => {
                     done = true;
@@ -378,7 +386,7 @@ impl<T: Send + 'static> Job<T> {
                 let mut result = None;
                 loop {
                     match work.step() {
-                        Step::Working => {}
+                        Step::Working | Step::Waiting => {}
                         Step::Publish(v) => latest = Some(v),
                         Step::Done(v) => {
                             result = Some(v);

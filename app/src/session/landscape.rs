@@ -40,18 +40,44 @@ impl Snapshot {
 
 /// Fills a landscape in steps.
 pub struct LandscapeWork {
-    job: LandscapeJob,
+    engine: Engine,
     threaded: bool,
     computed: Duration,
     next_preview: Duration,
 }
 
+/// Where the points are computed.
+enum Engine {
+    /// By this work itself (natively: on all cores).
+    Here(LandscapeJob),
+    /// In the browser's workers; this work only moves tiles.
+    #[cfg(target_arch = "wasm32")]
+    Workers(crate::web::pool::PoolFill),
+}
+
+/// Points computed by [`LandscapeWork`]s themselves, not by workers (the
+/// browser tests check that the page computes none).
+static POINTS_HERE: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// Points [`LandscapeWork`]s computed themselves since the start.
+pub fn points_computed_here() -> usize {
+    POINTS_HERE.load(std::sync::atomic::Ordering::Relaxed)
+}
+
 impl LandscapeWork {
     /// The work of filling `grid` for `model`; `threaded` when it has a
-    /// thread of its own.
+    /// thread of its own. In the browser the points are computed by the
+    /// page's workers when it has them (`web::pool`), here otherwise.
     pub fn new(model: Arc<Model>, grid: Grid, threaded: bool) -> Result<Self> {
+        #[cfg(target_arch = "wasm32")]
+        let engine = match crate::web::pool::PoolFill::start(&model, grid)? {
+            Some(fill) => Engine::Workers(fill),
+            None => Engine::Here(LandscapeJob::new(model, grid, FillOrder::CoarseToFine)?),
+        };
+        #[cfg(not(target_arch = "wasm32"))]
+        let engine = Engine::Here(LandscapeJob::new(model, grid, FillOrder::CoarseToFine)?);
         Ok(Self {
-            job: LandscapeJob::new(model, grid, FillOrder::CoarseToFine)?,
+            engine,
             threaded,
             computed: Duration::ZERO,
             next_preview: FIRST_PREVIEW,
@@ -59,9 +85,13 @@ impl LandscapeWork {
     }
 
     fn snapshot(&self) -> Snapshot {
-        let (done, total) = self.job.progress();
+        let ((done, total), landscape) = match &self.engine {
+            Engine::Here(job) => (job.progress(), job.landscape()),
+            #[cfg(target_arch = "wasm32")]
+            Engine::Workers(fill) => (fill.progress(), fill.landscape()),
+        };
         Snapshot {
-            landscape: self.job.landscape().clone(),
+            landscape: landscape.clone(),
             done,
             total,
         }
@@ -73,12 +103,39 @@ impl Work for LandscapeWork {
 
     fn step(&mut self) -> Step<Snapshot> {
         let start = Instant::now();
-        // Natively a step uses every core (rayon) even off a thread of its
-        // own; the browser has one.
-        let done = if cfg!(target_arch = "wasm32") {
-            self.job.step(SLICE_STEP)
-        } else {
-            self.job.step_par(TILE)
+        let done = match &mut self.engine {
+            Engine::Here(job) => {
+                let before = job.progress().0;
+                // Natively a step uses every core (rayon) even off a thread
+                // of its own; the browser has one.
+                let done = if cfg!(target_arch = "wasm32") {
+                    job.step(SLICE_STEP)
+                } else {
+                    job.step_par(TILE)
+                };
+                let points = job.progress().0 - before;
+                POINTS_HERE.fetch_add(points, std::sync::atomic::Ordering::Relaxed);
+                done
+            }
+            #[cfg(target_arch = "wasm32")]
+            Engine::Workers(fill) => {
+                let exchange = fill.exchange();
+                POINTS_HERE.fetch_add(exchange.points_here, std::sync::atomic::Ordering::Relaxed);
+                if fill.is_complete() {
+                    return Step::Done(self.snapshot());
+                }
+                if exchange.stored == 0 {
+                    return Step::Waiting;
+                }
+                // Previews on the wall clock (the work is elsewhere), each
+                // waiting twice as long as the last: a frame under software
+                // WebGL costs the workers a core for ~250 ms.
+                if fill.since_start() >= self.next_preview {
+                    self.next_preview = fill.since_start() * 2;
+                    return Step::Publish(self.snapshot());
+                }
+                return Step::Working;
+            }
         };
         self.computed += start.elapsed();
         if done {

@@ -35,6 +35,7 @@ pub mod messages;
 pub mod rl;
 pub mod settings;
 pub mod sources;
+pub mod tiles;
 mod stages;
 mod status;
 

@@ -5,7 +5,15 @@
 //! app's state as JSON, and `window.dmpscope_train(steps, seed)`, which
 //! starts RL training as the RL panel's Train button does (the extracted
 //! gains, the selected demo), so the test can compare the browser's
-//! learning curve with the native CLI's.
+//! learning curve with the native CLI's, and `window.dmpscope_grid(n)`,
+//! which sets an n x n grid as the grid settings do.
+//!
+//! The landscape is computed by Web Workers ([`pool`]: the page's side,
+//! [`worker`]: the worker's, `web/worker.js` the glue), each with its own
+//! instance of this module; the page's thread only moves tiles and draws.
+
+pub mod pool;
+pub mod worker;
 
 use eframe::wasm_bindgen::JsCast as _;
 use eframe::web_sys;
@@ -37,13 +45,29 @@ pub fn take_train_requests() -> Vec<(usize, u64)> {
 }
 
 #[cfg(feature = "testing")]
+thread_local! {
+    /// Grid sizes the test asked for (points per axis), not yet applied.
+    static GRID: std::cell::RefCell<Vec<usize>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// The grid sizes the test asked for since the last call.
+#[cfg(feature = "testing")]
+pub fn take_grid_requests() -> Vec<usize> {
+    GRID.with(|g| std::mem::take(&mut *g.borrow_mut()))
+}
+
+#[cfg(feature = "testing")]
 fn install_hook() {
     use eframe::wasm_bindgen::prelude::Closure;
     let hook = Closure::<dyn Fn() -> String>::new(|| STATE.with(|s| s.borrow().clone()));
     let train = Closure::<dyn Fn(f64, f64)>::new(|steps: f64, seed: f64| {
         TRAIN.with(|t| t.borrow_mut().push((steps as usize, seed as u64)));
     });
+    let grid = Closure::<dyn Fn(f64)>::new(|n: f64| {
+        GRID.with(|g| g.borrow_mut().push(n as usize));
+    });
     if let Some(window) = web_sys::window() {
+        let _ = js_sys::Reflect::set(&window, &"dmpscope_grid".into(), &grid.into_js_value());
         let _ = js_sys::Reflect::set(&window, &"dmpscope_state".into(), &hook.into_js_value());
         let _ = js_sys::Reflect::set(&window, &"dmpscope_train".into(), &train.into_js_value());
     }
