@@ -35,9 +35,9 @@ pub mod messages;
 pub mod rl;
 pub mod settings;
 pub mod sources;
-pub mod tiles;
 mod stages;
 mod status;
+pub mod tiles;
 
 use std::collections::BTreeSet;
 use std::sync::Arc;

@@ -106,10 +106,7 @@ impl TiledFill {
         if values.len() != 3 * points.len() {
             return Answer::Malformed;
         }
-        let triples: Vec<[f64; 3]> = values
-            .chunks_exact(3)
-            .map(|v| [v[0], v[1], v[2]])
-            .collect();
+        let triples: Vec<[f64; 3]> = values.chunks_exact(3).map(|v| [v[0], v[1], v[2]]).collect();
         if self.landscape.store(points, &triples).is_err() {
             return Answer::Malformed;
         }
@@ -215,7 +212,10 @@ mod tests {
     fn stale_duplicate_and_malformed_answers_never_reach_the_landscape() {
         let model = model();
         let mut fill = TiledFill::new(grid(), 2, 10).expect("fill");
-        let (t, points) = fill.next_tile().map(|(t, p)| (t, p.to_vec())).expect("a tile");
+        let (t, points) = fill
+            .next_tile()
+            .map(|(t, p)| (t, p.to_vec()))
+            .expect("a tile");
         let values = answer(&model, &fill, &points);
         assert_eq!(fill.accept(1, t, &values), Answer::Stale);
         assert_eq!(fill.accept(2, t, &values[..3]), Answer::Malformed);
@@ -231,7 +231,10 @@ mod tests {
         let mut fill = TiledFill::new(grid(), 0, 100).expect("fill");
         let (first, _) = fill.next_tile().expect("tile 0");
         let (second, _) = fill.next_tile().expect("tile 1");
-        assert!(fill.next_tile().is_none(), "two tiles of 100 for 144 points");
+        assert!(
+            fill.next_tile().is_none(),
+            "two tiles of 100 for 144 points"
+        );
         fill.hand_out_again(first);
         fill.hand_out_again(first);
         assert_eq!(fill.next_tile().map(|(t, _)| t), Some(first));

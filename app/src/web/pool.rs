@@ -180,7 +180,9 @@ impl Pool {
                     }),
                     _ => to_deaths.borrow_mut().push((
                         i,
-                        field(&data, "error").as_string().unwrap_or_else(|| kind.clone()),
+                        field(&data, "error")
+                            .as_string()
+                            .unwrap_or_else(|| kind.clone()),
                     )),
                 }
             },
@@ -218,7 +220,10 @@ impl Pool {
 
     /// Starts a generation for `model` over `grid`.
     fn begin(&mut self, model: &Arc<Model>, grid: Grid) -> Result<u64> {
-        let same = self.model.as_ref().is_some_and(|(m, _)| Arc::ptr_eq(m, model));
+        let same = self
+            .model
+            .as_ref()
+            .is_some_and(|(m, _)| Arc::ptr_eq(m, model));
         if !same {
             let inputs = ModelInputs {
                 demos: model.demos().to_vec(),
@@ -267,7 +272,9 @@ impl Pool {
     fn bury(&mut self) {
         let deaths: Vec<(usize, String)> = self.deaths.borrow_mut().drain(..).collect();
         for (i, why) in deaths {
-            let Some(slot) = self.slots.get_mut(i) else { continue };
+            let Some(slot) = self.slots.get_mut(i) else {
+                continue;
+            };
             if !slot.alive {
                 continue;
             }
@@ -338,7 +345,10 @@ impl Pool {
                     ("points", array.clone().into()),
                 ]);
                 let transfer = js_sys::Array::of1(&array.buffer());
-                match self.slots[i].worker.post_message_with_transfer(&msg, &transfer) {
+                match self.slots[i]
+                    .worker
+                    .post_message_with_transfer(&msg, &transfer)
+                {
                     Ok(()) => self.slots[i].in_flight.push((generation, tile)),
                     Err(e) => {
                         fill.hand_out_again(tile);
@@ -393,8 +403,8 @@ impl PoolFill {
     /// Takes in the workers' answers and sends new tiles; computes tiles on
     /// the page only when every worker has failed.
     pub fn exchange(&mut self) -> Exchange {
-        let (stored, alive) = with_pool(|p| (p.exchange(&mut self.fill), p.any_alive()))
-            .unwrap_or((0, false));
+        let (stored, alive) =
+            with_pool(|p| (p.exchange(&mut self.fill), p.any_alive())).unwrap_or((0, false));
         let mut points_here = 0;
         if !alive {
             let start = Instant::now();

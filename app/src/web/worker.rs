@@ -76,7 +76,8 @@ pub fn dmpscope_worker_grid(generation: f64, model: f64, json: &str) -> Result<(
             return Err(js_error(format!("worker: no model {model}")));
         };
         let m = m.1.clone();
-        h.grids.insert(generation as u64, (m, Landscape::blank(grid)));
+        h.grids
+            .insert(generation as u64, (m, Landscape::blank(grid)));
         Ok(())
     })
 }
