@@ -1,11 +1,31 @@
 // A dmpscope worker: its own instance of the app's wasm module, computing
-// landscape tiles for the page (app/src/web/pool.rs is the page's side,
+// landscape tiles, the diagnostics' resampled extractions and RL runs for
+// the page (app/src/web/pool.rs is the page's side,
 // app/src/web/worker.rs what this calls). The page's first message hands
 // over its compiled WebAssembly.Module, so nothing is fetched or compiled
 // twice; every later message waits for that instance.
 import init, * as dmpscope from "./dmpscope.js";
 
 let ready = null;
+
+// Trains an RL run in ~20 ms slices, letting messages (tiles, forget) in
+// between; posts an update after every iteration and the last one.
+function pump(generation, piece) {
+  let out;
+  try {
+    out = dmpscope.dmpscope_worker_run_step(generation, piece, 20);
+  } catch (e) {
+    self.postMessage({ kind: "error", generation, piece, error: String(e) });
+    return;
+  }
+  if (out === undefined) return; // the page forgot this generation
+  if (out !== "") {
+    const last = out[0] === "L";
+    self.postMessage({ kind: last ? "answer" : "progress", generation, piece, json: out.slice(1) });
+    if (last) return;
+  }
+  setTimeout(() => pump(generation, piece), 0);
+}
 
 self.onmessage = async (event) => {
   const m = event.data;
@@ -28,18 +48,30 @@ self.onmessage = async (event) => {
       case "grid":
         dmpscope.dmpscope_worker_grid(m.generation, m.model, m.grid);
         break;
+      case "diag":
+        dmpscope.dmpscope_worker_diag(m.generation, m.model, m.grid, m.k);
+        break;
+      case "rl":
+        dmpscope.dmpscope_worker_rl(m.generation, m.model, m.request);
+        break;
+      case "run":
+        pump(m.generation, m.piece);
+        break;
       case "forget":
         dmpscope.dmpscope_worker_forget(m.generation);
         break;
-      case "tile": {
-        const values = dmpscope.dmpscope_worker_tile(m.generation, m.points);
-        self.postMessage({ kind: "tile", generation: m.generation, tile: m.tile, values }, [values.buffer]);
+      case "tile":
+      case "part": {
+        const values = m.kind === "tile"
+          ? dmpscope.dmpscope_worker_tile(m.generation, m.payload)
+          : dmpscope.dmpscope_worker_part(m.generation, m.payload);
+        self.postMessage({ kind: "answer", generation: m.generation, piece: m.piece, values }, [values.buffer]);
         break;
       }
       default:
         throw new Error("unknown message " + m.kind);
     }
   } catch (e) {
-    self.postMessage({ kind: "error", generation: m.generation, tile: m.tile, error: String(e) });
+    self.postMessage({ kind: "error", generation: m.generation, piece: m.piece, error: String(e) });
   }
 };

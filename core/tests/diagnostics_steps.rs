@@ -62,3 +62,37 @@ fn stepping_does_not_change_the_diagnostics() {
     assert_eq!(sliced.diagnostics(), all.diagnostics());
     assert_eq!(sliced.bootstrap_optima(), all.bootstrap_optima());
 }
+
+#[test]
+fn parts_computed_elsewhere_in_any_order_give_the_same_diagnostics() {
+    let mut all = job();
+    all.run(&|_| {});
+
+    let model = Arc::new(golden_data::model());
+    let mut handed = job();
+    let (grid, k) = (handed.part_grid(), handed.k());
+    let mut parts = Vec::new();
+    while let Some(part) = handed.take_part() {
+        parts.push(part);
+    }
+    let n = parts.len();
+    assert!(!handed.is_done(), "not done while parts are out");
+    assert_eq!(handed.progress(), (0, n));
+    // A worker died with the first part: it is handed out again.
+    let lost = parts.remove(0);
+    handed.return_part(lost.id);
+    let again = handed.take_part().expect("handed out again");
+    assert_eq!(again, lost);
+    parts.push(again);
+    // Answers in reverse order; a second answer for a part is refused.
+    parts.reverse();
+    for part in &parts {
+        let found = dmpscope_core::diagnostics::optimum_of(&model, &part.indices, grid, k).ok();
+        assert!(handed.put_part(part.id, found));
+        assert!(!handed.put_part(part.id, found), "an answer given twice");
+    }
+    assert!(handed.is_done());
+    assert_eq!(handed.progress(), (n, n));
+    assert_eq!(handed.diagnostics(), all.diagnostics());
+    assert_eq!(handed.bootstrap_optima(), all.bootstrap_optima());
+}

@@ -146,8 +146,8 @@ try {
   check(full.workers.tiles_from_workers >= Math.ceil(full.landscape.total / 128) && full.landscape_points_here === 0,
     `the workers computed all ${full.workers.tiles_from_workers} tiles, the page none of the ${full.landscape.total} points`);
 
-  // The diagnostics, time-sliced on the page's thread: the same numbers as
-  // the native `extract --json`.
+  // The diagnostics, their resampled extractions in the workers: the same
+  // numbers as the native `extract --json`.
   const diagStart = Date.now();
   const framesBefore = (await state()).frames;
   const diag = await until("the diagnostics", (s) => s.diagnostics && s.diagnostics.done === s.diagnostics.total && s.diagnostics.values.bootstrap, 180000);
@@ -170,20 +170,24 @@ try {
   const diagWorst = worstOf(values), gainWorst = worstOf(gains);
   figures.diagnostics_values_vs_native_rel = diagWorst;
   figures.diagnostics_gains_vs_native_rel = gainWorst;
+  figures.diagnostics_parts_from_workers = diag.workers.parts_from_workers;
+  check(diag.workers.parts_from_workers >= diag.diagnostics.total && diag.workers.alive === diag.workers.workers,
+    `the workers computed the ${diag.diagnostics.total} resampled extractions (${diag.diagnostics.compute_ms.toFixed(0)} ms on the page's thread)`);
   check(bd.flat === nd.flat && bd.flat === true, "the browser says the sample does not determine the gains, as the CLI");
   check(diagWorst <= 1e-9, `the browser's diagnostic values equal the native ones (relative difference ${diagWorst.toExponential(2)})`);
   check(gainWorst <= 1e-5, `the browser's diagnostic gains match the native ones (relative difference ${gainWorst.toExponential(2)})`);
   check(bd.bootstrap.on_edge_fraction === nd.bootstrap.on_edge_fraction && bd.bootstrap.n === nd.bootstrap.n, "the same bootstrap edge fraction");
 
-  // RL training, time-sliced on the page's thread as the RL panel's Train
-  // does: the same learning curve as the native CLI for the same gains and
-  // seed (RL's transcendental functions are portable, core::rl::math).
+  // RL training in a worker, as the RL panel's Train does: the same
+  // learning curve as the native CLI for the same gains and seed (RL's
+  // transcendental functions are portable, core::rl::math).
   const rlSteps = 2000;
   const rlStart = Date.now();
   await page.evaluate((n) => window.dmpscope_train(n, 1), rlSteps);
   const trained = await until("RL training", (s) => s.rl && s.rl.done, 120000);
   figures.rl_train_s = (Date.now() - rlStart) / 1000;
-  check(!trained.rl.stopped && trained.rl.decisions === rlSteps, `the browser trained ${trained.rl.decisions} decisions`);
+  check(!trained.rl.stopped && trained.rl.decisions === rlSteps && trained.workers.runs_from_workers >= 1,
+    `a worker trained ${trained.rl.decisions} decisions (runs from workers: ${trained.workers.runs_from_workers})`);
   const rlJson = join(profile, "rl_native.json");
   execFileSync(bin, ["rl", join(repo, "assets", "reach10.mcap"), "--demo", "1", "--dm", String(trained.rl.dm),
     "--km", String(trained.rl.km), "--steps", String(rlSteps), "--seed", "1", "--out", rlJson], { stdio: "ignore" });
@@ -204,12 +208,9 @@ try {
   // of the old grid never reach the new one, and the 128 x 128 landscape
   // computed again in the workers gives the native optimum again.
   const tilesBefore = (await state()).workers.tiles_from_workers;
-  // (The hook is read in a frame: a pointer move makes one.)
   await page.evaluate(() => window.dmpscope_grid(96));
-  await page.mouse.move(640, 700);
   await until("the 96 x 96 landscape to start", (s) => s.landscape.total === 96 * 96 && s.landscape.done > 0, 20000);
   await page.evaluate(() => window.dmpscope_grid(128));
-  await page.mouse.move(650, 700);
   const regrid = await until("the 128 x 128 landscape again", (s) => s.landscape.total === 16384 && s.landscape.done === 16384, 60000);
   const reopt = await until("its optimum", (s) => s.optimum !== null, 30000);
   const regridWorst = Math.max(rel(reopt.optimum.dm, native.dm), rel(reopt.optimum.km, native.km), rel(reopt.optimum.j, native.j));

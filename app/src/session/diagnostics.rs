@@ -1,9 +1,10 @@
 //! The diagnostics of the extraction as a [`Work`] (method.md section 9):
 //! the core's [`DiagnosticsJob`] made in its first step (depth, balance,
 //! shares, the S minimum), then its resampled extractions (leave-one-out,
-//! bootstrap) a batch per step natively and a few landscape points per step
-//! in the browser, each step publishing a [`DiagSnapshot`] for the views to
-//! show as results come.
+//! bootstrap) a batch per step natively and, in the browser, in the page's
+//! workers (`web::fills::PoolDiag`; a few landscape points per step on the
+//! page where it has none), each step publishing a [`DiagSnapshot`] for the
+//! views to show as results come.
 
 use std::sync::Arc;
 
@@ -58,6 +59,11 @@ struct Pending {
 pub struct DiagnosticsWork {
     pending: Option<Pending>,
     job: Option<DiagnosticsJob>,
+    /// The browser's workers computing the resampled extractions.
+    #[cfg(target_arch = "wasm32")]
+    pool: Option<crate::web::fills::PoolDiag>,
+    #[cfg(target_arch = "wasm32")]
+    started: Instant,
     threaded: bool,
     /// Compute time so far, and when the next preview is due.
     computed: Duration,
@@ -82,6 +88,10 @@ impl DiagnosticsWork {
                 settings,
             }),
             job: None,
+            #[cfg(target_arch = "wasm32")]
+            pool: None,
+            #[cfg(target_arch = "wasm32")]
+            started: Instant::now(),
             threaded,
             computed: Duration::ZERO,
             next_preview: PREVIEW_EVERY,
@@ -105,7 +115,16 @@ impl Work for DiagnosticsWork {
 
     fn step(&mut self) -> Step<DiagSnapshot> {
         if let Some(p) = self.pending.take() {
+            #[cfg(target_arch = "wasm32")]
+            let model = p.model.clone();
             let job = DiagnosticsJob::new(p.model, &p.landscape, &p.extraction, p.settings);
+            #[cfg(target_arch = "wasm32")]
+            {
+                self.pool = crate::web::fills::PoolDiag::start(&model, &job)
+                    .ok()
+                    .flatten();
+                self.started = Instant::now();
+            }
             let snapshot = Self::snapshot(&job);
             let done = job.is_done();
             self.job = Some(job);
@@ -118,6 +137,23 @@ impl Work for DiagnosticsWork {
         let Some(job) = &mut self.job else {
             return Step::Working;
         };
+        #[cfg(target_arch = "wasm32")]
+        if let Some(pool) = &mut self.pool {
+            let stored = pool.exchange(job, SLICE_POINTS);
+            if job.is_done() {
+                return Step::Done(Self::snapshot(job));
+            }
+            if stored == 0 {
+                return Step::Waiting;
+            }
+            // Previews on the wall clock (the work is elsewhere).
+            let elapsed = self.started.elapsed();
+            if elapsed >= self.next_preview {
+                self.next_preview = elapsed * 3 / 2 + PREVIEW_EVERY;
+                return Step::Publish(Self::snapshot(job));
+            }
+            return Step::Working;
+        }
         let start = Instant::now();
         let done = if cfg!(target_arch = "wasm32") {
             job.step_points(SLICE_POINTS)

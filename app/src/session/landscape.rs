@@ -52,7 +52,7 @@ enum Engine {
     Here(LandscapeJob),
     /// In the browser's workers; this work only moves tiles.
     #[cfg(target_arch = "wasm32")]
-    Workers(crate::web::pool::PoolFill),
+    Workers(crate::web::fills::PoolFill),
 }
 
 /// Points computed by [`LandscapeWork`]s themselves, not by workers (the
@@ -70,7 +70,7 @@ impl LandscapeWork {
     /// page's workers when it has them (`web::pool`), here otherwise.
     pub fn new(model: Arc<Model>, grid: Grid, threaded: bool) -> Result<Self> {
         #[cfg(target_arch = "wasm32")]
-        let engine = match crate::web::pool::PoolFill::start(&model, grid)? {
+        let engine = match crate::web::fills::PoolFill::start(&model, grid)? {
             Some(fill) => Engine::Workers(fill),
             None => Engine::Here(LandscapeJob::new(model, grid, FillOrder::CoarseToFine)?),
         };

@@ -33,6 +33,7 @@ pub mod jobs;
 pub mod landscape;
 pub mod messages;
 pub mod rl;
+pub mod rl_board;
 pub mod settings;
 pub mod sources;
 mod stages;

@@ -11,12 +11,13 @@ use std::sync::Arc;
 
 use dmpscope_core::rl::{EnvOptions, FirstReach, GreedyRun, RunReport, TrainingRun};
 use dmpscope_core::{Error, Model, Result};
+use serde::{Deserialize, Serialize};
 use web_time::Instant;
 
 use super::jobs::{Step, Work};
 
 /// One run of a request: the gains and the seed.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RlRun {
     /// What the gains are ("extracted", a preset's name, ...).
     pub gains_name: String,
@@ -30,7 +31,7 @@ pub struct RlRun {
 
 /// What to train: a demo of the model, the environment, the budget per
 /// run and the runs, in order.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RlRequest {
     /// The demo (model index).
     pub demo: usize,
@@ -71,13 +72,16 @@ pub struct Progress {
     pub stopped: Option<String>,
 }
 
-/// Trains the runs of one request, one after the other.
+/// Trains the runs of one request: one after the other on this thread, or
+/// in the browser in its workers, as many at once as it has.
 pub struct RlWork {
     run: TrainingRun,
     model: Arc<Model>,
     request: RlRequest,
     started: Instant,
     progress: Progress,
+    #[cfg(target_arch = "wasm32")]
+    pool: Option<crate::web::rl::PoolRl>,
 }
 
 fn start(model: &Model, request: &RlRequest, i: usize) -> Result<TrainingRun> {
@@ -108,12 +112,16 @@ impl RlWork {
             decisions: (0, request.steps),
             ..Progress::default()
         };
+        #[cfg(target_arch = "wasm32")]
+        let pool = crate::web::rl::PoolRl::start(&model, &request)?;
         Ok(Self {
             run,
             model,
             request,
             started: Instant::now(),
             progress,
+            #[cfg(target_arch = "wasm32")]
+            pool,
         })
     }
 
@@ -150,6 +158,31 @@ impl Work for RlWork {
     type Output = Progress;
 
     fn step(&mut self) -> Step<Progress> {
+        #[cfg(target_arch = "wasm32")]
+        if let Some(pool) = &mut self.pool {
+            match pool.exchange() {
+                Some(stored) => {
+                    self.progress = pool.progress();
+                    if pool.done() {
+                        return Step::Done(self.progress.clone());
+                    }
+                    return if stored == 0 {
+                        Step::Waiting
+                    } else {
+                        Step::Publish(self.progress.clone())
+                    };
+                }
+                None => {
+                    log::warn!("dmpscope: no worker left; the page trains the runs from the start");
+                    self.pool = None;
+                    self.started = Instant::now();
+                    self.progress = Progress {
+                        decisions: (0, self.request.steps),
+                        ..Progress::default()
+                    };
+                }
+            }
+        }
         let seconds = self.started.elapsed().as_secs_f64();
         let stopped = |p: &mut Progress, why: String| {
             p.stopped = Some(why);

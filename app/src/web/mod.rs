@@ -8,11 +8,14 @@
 //! learning curve with the native CLI's, and `window.dmpscope_grid(n)`,
 //! which sets an n x n grid as the grid settings do.
 //!
-//! The landscape is computed by Web Workers ([`pool`]: the page's side,
-//! [`worker`]: the worker's, `web/worker.js` the glue), each with its own
-//! instance of this module; the page's thread only moves tiles and draws.
+//! The landscape and the diagnostics' resampled extractions are computed
+//! by Web Workers ([`pool`] and [`fills`]: the page's side, [`worker`]: the
+//! worker's, `web/worker.js` the glue), each with its own instance of this
+//! module; the page's thread moves messages and draws.
 
+pub mod fills;
 pub mod pool;
+pub mod rl;
 pub mod worker;
 
 use eframe::wasm_bindgen::JsCast as _;
@@ -57,14 +60,33 @@ pub fn take_grid_requests() -> Vec<usize> {
 }
 
 #[cfg(feature = "testing")]
+thread_local! {
+    /// The app's context, so that a hook's request is read at once (a
+    /// frame), not whenever the page next repaints.
+    static CONTEXT: std::cell::RefCell<Option<eframe::egui::Context>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Asks for a frame, in which the app reads the hooks' requests.
+#[cfg(feature = "testing")]
+fn wake_app() {
+    CONTEXT.with(|c| {
+        if let Some(ctx) = &*c.borrow() {
+            ctx.request_repaint();
+        }
+    });
+}
+
+#[cfg(feature = "testing")]
 fn install_hook() {
     use eframe::wasm_bindgen::prelude::Closure;
     let hook = Closure::<dyn Fn() -> String>::new(|| STATE.with(|s| s.borrow().clone()));
     let train = Closure::<dyn Fn(f64, f64)>::new(|steps: f64, seed: f64| {
         TRAIN.with(|t| t.borrow_mut().push((steps as usize, seed as u64)));
+        wake_app();
     });
     let grid = Closure::<dyn Fn(f64)>::new(|n: f64| {
         GRID.with(|g| g.borrow_mut().push(n as usize));
+        wake_app();
     });
     if let Some(window) = web_sys::window() {
         let _ = js_sys::Reflect::set(&window, &"dmpscope_grid".into(), &grid.into_js_value());
@@ -93,7 +115,11 @@ pub fn start() {
             .start(
                 canvas,
                 eframe::WebOptions::default(),
-                Box::new(|cc| Ok(Box::new(DmpApp::new(cc, Vec::new())))),
+                Box::new(|cc| {
+                    #[cfg(feature = "testing")]
+                    CONTEXT.with(|c| *c.borrow_mut() = Some(cc.egui_ctx.clone()));
+                    Ok(Box::new(DmpApp::new(cc, Vec::new())))
+                }),
             )
             .await;
         if let Err(e) = started {

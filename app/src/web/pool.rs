@@ -4,37 +4,33 @@
 //! (the page hands them its compiled `WebAssembly.Module`). Plain message
 //! passing, no shared memory, so the page works on any static host.
 //!
-//! A landscape is a [`PoolFill`]: it sends its model once per worker (only
-//! when the model changed since the last fill), then its grid under a new
-//! generation, then tiles, at most [`IN_FLIGHT`] per worker, coarse levels
-//! first. Answers come back in any order and are stored by the fill's
-//! [`TiledFill`] bookkeeping, which refuses any answer of another
-//! generation. Dropping the fill (a new grid or demo selection, or a
-//! cancel) forgets its generation: the workers drop it, answers still on
-//! their way are discarded. A worker that fails is terminated and its tiles
-//! are handed to the others; with none left the page computes the rest
-//! itself and says so in the log.
+//! Work is handed out under generations ([`Handout`]): a landscape's tiles
+//! (`fills::PoolFill`), a diagnosis's resampled extractions
+//! (`fills::PoolDiag`) or RL runs (`rl::PoolRl`, one per worker at a time,
+//! with an update after every iteration). A generation sends its model once per worker (only
+//! when the model changed since the last generation), then its settings,
+//! then pieces, at most [`IN_FLIGHT`] per worker. Answers come back in any
+//! order; one for a generation no longer live is dropped, so nothing stale
+//! reaches the view. Ending a generation (its owner was replaced or
+//! cancelled) makes the workers forget it. A worker that fails is
+//! terminated and its pieces are handed to the others; with none left the
+//! owner computes on the page and the log says so.
 
 use std::cell::RefCell;
 use std::collections::BTreeSet;
 use std::rc::Rc;
 use std::sync::Arc;
 
-use dmpscope_core::landscape::{Grid, Landscape};
 use dmpscope_core::{Model, Result};
 use eframe::web_sys;
 use wasm_bindgen::JsCast as _;
 use wasm_bindgen::prelude::*;
-use web_time::{Duration, Instant};
 
 use super::worker::ModelInputs;
-use crate::session::tiles::{Answer, TiledFill};
 
-/// Tiles a worker holds at once (one computing, one waiting, so it never
+/// Pieces a worker holds at once (one computing, one waiting, so it never
 /// idles while the page answers).
 pub const IN_FLIGHT: usize = 2;
-/// Points per tile: about 8 ms of one core.
-const TILE_POINTS: usize = 128;
 /// Workers at most, whatever the machine says.
 const MAX_WORKERS: usize = 8;
 
@@ -42,8 +38,12 @@ const MAX_WORKERS: usize = 8;
 struct Reply {
     worker: usize,
     generation: u64,
-    tile: usize,
+    piece: usize,
     values: std::result::Result<Vec<f64>, String>,
+    /// A JSON answer (RL runs' updates).
+    json: Option<String>,
+    /// Whether the piece is answered (else an update on the way).
+    last: bool,
 }
 
 /// One worker and what it holds.
@@ -56,7 +56,7 @@ struct Slot {
 }
 
 /// The workers and the answers they sent.
-struct Pool {
+pub(super) struct Pool {
     slots: Vec<Slot>,
     replies: Rc<RefCell<Vec<Reply>>>,
     deaths: Rc<RefCell<Vec<(usize, String)>>>,
@@ -64,9 +64,11 @@ struct Pool {
     model: Option<(Arc<Model>, u64)>,
     next_id: u64,
     live: BTreeSet<u64>,
-    /// Tiles handed out whose worker died, by generation.
+    /// Pieces handed out whose worker died, by generation.
     lost: Vec<(u64, usize)>,
     tiles_from_workers: usize,
+    parts_from_workers: usize,
+    runs_from_workers: usize,
 }
 
 thread_local! {
@@ -76,7 +78,7 @@ thread_local! {
 }
 
 /// Runs `f` on the pool, starting it at the first call; `None` without one.
-fn with_pool<R>(f: impl FnOnce(&mut Pool) -> R) -> Option<R> {
+pub(super) fn with_pool<R>(f: impl FnOnce(&mut Pool) -> R) -> Option<R> {
     POOL.with(|p| {
         let mut p = p.borrow_mut();
         let pool = p.get_or_insert_with(Pool::start);
@@ -91,8 +93,12 @@ pub struct PoolStats {
     pub workers: usize,
     /// Of those, still alive.
     pub alive: usize,
-    /// Tiles the workers answered and a fill stored.
+    /// Landscape tiles the workers answered and a fill stored.
     pub tiles_from_workers: usize,
+    /// Resampled extractions of the diagnostics the workers answered.
+    pub parts_from_workers: usize,
+    /// RL runs the workers trained to their end.
+    pub runs_from_workers: usize,
 }
 
 /// The pool's figures (zero before the first landscape).
@@ -102,12 +108,15 @@ pub fn stats() -> PoolStats {
             workers: pool.slots.len(),
             alive: pool.slots.iter().filter(|s| s.alive).count(),
             tiles_from_workers: pool.tiles_from_workers,
+            parts_from_workers: pool.parts_from_workers,
+            runs_from_workers: pool.runs_from_workers,
         },
         _ => PoolStats::default(),
     })
 }
 
-fn message(pairs: &[(&str, JsValue)]) -> JsValue {
+/// A message: a plain object of these fields.
+pub(super) fn message(pairs: &[(&str, JsValue)]) -> JsValue {
     let object = js_sys::Object::new();
     for (key, value) in pairs {
         let _ = js_sys::Reflect::set(&object, &JsValue::from_str(key), value);
@@ -147,6 +156,8 @@ impl Pool {
             live: BTreeSet::new(),
             lost: Vec::new(),
             tiles_from_workers: 0,
+            parts_from_workers: 0,
+            runs_from_workers: 0,
         })
     }
 
@@ -165,18 +176,27 @@ impl Pool {
                 let data = event.data();
                 let kind = field(&data, "kind").as_string().unwrap_or_default();
                 let number = |key| field(&data, key).as_f64().unwrap_or(-1.0);
+                let json = field(&data, "json").as_string();
+                let values = || match field(&data, "values") {
+                    v if v.is_undefined() => Vec::new(),
+                    v => js_sys::Float64Array::new(&v).to_vec(),
+                };
                 match kind.as_str() {
-                    "tile" => to_replies.borrow_mut().push(Reply {
+                    "answer" | "progress" => to_replies.borrow_mut().push(Reply {
                         worker: i,
                         generation: number("generation") as u64,
-                        tile: number("tile") as usize,
-                        values: Ok(js_sys::Float64Array::new(&field(&data, "values")).to_vec()),
+                        piece: number("piece") as usize,
+                        values: Ok(values()),
+                        json,
+                        last: kind == "answer",
                     }),
                     "error" => to_replies.borrow_mut().push(Reply {
                         worker: i,
                         generation: number("generation") as u64,
-                        tile: number("tile") as usize,
+                        piece: number("piece") as usize,
                         values: Err(field(&data, "error").as_string().unwrap_or_default()),
+                        json: None,
+                        last: true,
                     }),
                     _ => to_deaths.borrow_mut().push((
                         i,
@@ -218,8 +238,14 @@ impl Pool {
         }
     }
 
-    /// Starts a generation for `model` over `grid`.
-    fn begin(&mut self, model: &Arc<Model>, grid: Grid) -> Result<u64> {
+    /// Starts a generation for `model`: `kind` and `fields` say what its
+    /// pieces are (the workers' side is `web::worker`).
+    pub(super) fn begin(
+        &mut self,
+        model: &Arc<Model>,
+        kind: &str,
+        fields: Vec<(&str, JsValue)>,
+    ) -> Result<u64> {
         let same = self
             .model
             .as_ref()
@@ -243,20 +269,19 @@ impl Pool {
         let model_id = self.model.as_ref().map_or(0, |(_, id)| *id);
         let generation = self.next_id;
         self.next_id += 1;
-        let grid_json = serde_json::to_string(&grid)
-            .map_err(|e| dmpscope_core::Error::InvalidSetting(format!("the grid: {e}")))?;
-        self.broadcast(&message(&[
-            ("kind", "grid".into()),
+        let mut pairs = vec![
+            ("kind", JsValue::from_str(kind)),
             ("generation", (generation as f64).into()),
             ("model", (model_id as f64).into()),
-            ("grid", grid_json.into()),
-        ]));
+        ];
+        pairs.extend(fields);
+        self.broadcast(&message(&pairs));
         self.live.insert(generation);
         Ok(generation)
     }
 
-    /// Ends a generation: its tiles are no longer wanted.
-    fn end(&mut self, generation: u64) {
+    /// Ends a generation: its pieces are no longer wanted.
+    pub(super) fn end(&mut self, generation: u64) {
         self.live.remove(&generation);
         for slot in &mut self.slots {
             slot.in_flight.retain(|(g, _)| *g != generation);
@@ -268,7 +293,7 @@ impl Pool {
         ]));
     }
 
-    /// Buries workers that failed: their tiles go back to their fills.
+    /// Buries workers that failed: their pieces go back to their owners.
     fn bury(&mut self) {
         let deaths: Vec<(usize, String)> = self.deaths.borrow_mut().drain(..).collect();
         for (i, why) in deaths {
@@ -285,18 +310,21 @@ impl Pool {
         }
     }
 
-    /// Stores the answers for `fill`, hands it the tiles of dead workers
-    /// again and sends it new tiles. Returns the tiles stored.
-    fn exchange(&mut self, fill: &mut TiledFill) -> usize {
+    /// Gives `owner` the answers of its generation, hands it back the
+    /// pieces of dead workers and sends its next pieces. Returns the
+    /// answers it stored.
+    pub(super) fn exchange(&mut self, owner: &mut dyn Handout) -> usize {
         self.bury();
-        let generation = fill.generation();
+        let generation = owner.generation();
         let mut stored = 0;
         let replies: Vec<Reply> = self.replies.borrow_mut().drain(..).collect();
         let mut keep = Vec::new();
         for reply in replies {
-            if let Some(slot) = self.slots.get_mut(reply.worker) {
+            if reply.last
+                && let Some(slot) = self.slots.get_mut(reply.worker)
+            {
                 slot.in_flight
-                    .retain(|&x| x != (reply.generation, reply.tile));
+                    .retain(|&x| x != (reply.generation, reply.piece));
             }
             if reply.generation != generation {
                 if self.live.contains(&reply.generation) {
@@ -305,17 +333,28 @@ impl Pool {
                 continue;
             }
             match &reply.values {
-                Ok(values) => match fill.accept(generation, reply.tile, values) {
-                    Answer::Stored => {
+                Ok(_) if !reply.last => {
+                    if let Some(json) = &reply.json {
+                        owner.progress(reply.piece, json);
                         stored += 1;
-                        self.tiles_from_workers += 1;
                     }
-                    other => log::warn!("dmpscope: a worker's tile was dropped: {other:?}"),
-                },
+                }
+                Ok(values) => {
+                    if owner.accept(reply.piece, values, reply.json.as_deref()) {
+                        stored += 1;
+                        match owner.kind() {
+                            "tile" => self.tiles_from_workers += 1,
+                            "part" => self.parts_from_workers += 1,
+                            _ => self.runs_from_workers += 1,
+                        }
+                    } else {
+                        log::warn!("dmpscope: a worker's answer was dropped");
+                    }
+                }
                 Err(why) => {
-                    // A worker that cannot compute a tile computes none.
+                    // A worker that cannot compute a piece computes none.
                     self.deaths.borrow_mut().push((reply.worker, why.clone()));
-                    fill.hand_out_again(reply.tile);
+                    owner.again(reply.piece);
                 }
             }
         }
@@ -328,30 +367,29 @@ impl Pool {
             .map(|(_, t)| *t)
             .collect();
         self.lost.retain(|(g, _)| *g != generation);
-        for tile in mine {
-            fill.hand_out_again(tile);
+        for piece in mine {
+            owner.again(piece);
         }
         for i in 0..self.slots.len() {
-            while self.slots[i].alive && self.slots[i].in_flight.len() < IN_FLIGHT {
-                let Some((tile, points)) = fill.next_tile() else {
+            while self.slots[i].alive && self.slots[i].in_flight.len() < owner.in_flight() {
+                let Some((piece, payload)) = owner.next() else {
                     return stored;
                 };
-                let flat: Vec<u32> = points.iter().flat_map(|&(a, b)| [a, b]).collect();
-                let array = js_sys::Uint32Array::from(flat.as_slice());
+                let array = js_sys::Uint32Array::from(payload.as_slice());
                 let msg = message(&[
-                    ("kind", "tile".into()),
+                    ("kind", owner.kind().into()),
                     ("generation", (generation as f64).into()),
-                    ("tile", (tile as f64).into()),
-                    ("points", array.clone().into()),
+                    ("piece", (piece as f64).into()),
+                    ("payload", array.clone().into()),
                 ]);
                 let transfer = js_sys::Array::of1(&array.buffer());
                 match self.slots[i]
                     .worker
                     .post_message_with_transfer(&msg, &transfer)
                 {
-                    Ok(()) => self.slots[i].in_flight.push((generation, tile)),
+                    Ok(()) => self.slots[i].in_flight.push((generation, piece)),
                     Err(e) => {
-                        fill.hand_out_again(tile);
+                        owner.again(piece);
                         self.deaths.borrow_mut().push((i, format!("{e:?}")));
                         break;
                     }
@@ -361,96 +399,29 @@ impl Pool {
         stored
     }
 
-    fn any_alive(&self) -> bool {
+    /// Whether any worker is alive.
+    pub(super) fn any_alive(&self) -> bool {
         self.slots.iter().any(|s| s.alive)
     }
 }
 
-/// What one [`PoolFill::exchange`] did.
-pub struct Exchange {
-    /// Tiles stored from the workers.
-    pub stored: usize,
-    /// Points the page computed itself (no worker left).
-    pub points_here: usize,
-}
-
-/// A landscape filled by the pool's workers.
-pub struct PoolFill {
-    fill: TiledFill,
-    model: Arc<Model>,
-    started: Instant,
-}
-
-/// Page time a fill may spend computing per exchange when no worker is
-/// left.
-const HERE_BUDGET: Duration = Duration::from_millis(8);
-
-impl PoolFill {
-    /// Starts filling `grid` for `model` in the workers; `None` where the
-    /// page has no workers (it computes the landscape itself).
-    pub fn start(model: &Arc<Model>, grid: Grid) -> Result<Option<Self>> {
-        grid.validate()?;
-        let Some(generation) = with_pool(|p| p.begin(model, grid)) else {
-            return Ok(None);
-        };
-        Ok(Some(Self {
-            fill: TiledFill::new(grid, generation?, TILE_POINTS)?,
-            model: model.clone(),
-            started: Instant::now(),
-        }))
+/// What a generation hands out to the workers and takes back.
+pub(super) trait Handout {
+    /// The generation its answers carry.
+    fn generation(&self) -> u64;
+    /// The message kind of its pieces (`tile`, `part`, `run`).
+    fn kind(&self) -> &'static str;
+    /// Pieces a worker may hold at once.
+    fn in_flight(&self) -> usize {
+        IN_FLIGHT
     }
-
-    /// Takes in the workers' answers and sends new tiles; computes tiles on
-    /// the page only when every worker has failed.
-    pub fn exchange(&mut self) -> Exchange {
-        let (stored, alive) =
-            with_pool(|p| (p.exchange(&mut self.fill), p.any_alive())).unwrap_or((0, false));
-        let mut points_here = 0;
-        if !alive {
-            let start = Instant::now();
-            while start.elapsed() < HERE_BUDGET {
-                let Some((tile, points)) = self.fill.next_tile() else {
-                    break;
-                };
-                let points = points.to_vec();
-                let Ok(values) = self.fill.landscape().evaluate(&self.model, &points) else {
-                    break;
-                };
-                let generation = self.fill.generation();
-                self.fill.accept(generation, tile, &values.concat());
-                points_here += points.len();
-            }
-        }
-        Exchange {
-            stored: stored + usize::from(points_here > 0),
-            points_here,
-        }
-    }
-
-    /// Points stored and in all.
-    pub fn progress(&self) -> (usize, usize) {
-        self.fill.progress()
-    }
-
-    /// Whether every point is stored.
-    pub fn is_complete(&self) -> bool {
-        self.fill.is_complete()
-    }
-
-    /// The landscape so far.
-    pub fn landscape(&self) -> &Landscape {
-        self.fill.landscape()
-    }
-
-    /// Time since the fill started.
-    pub fn since_start(&self) -> Duration {
-        self.started.elapsed()
-    }
-}
-
-impl Drop for PoolFill {
-    fn drop(&mut self) {
-        let generation = self.fill.generation();
-        let _ = with_pool(|p| p.end(generation));
-    }
+    /// The next piece to send: its id and payload.
+    fn next(&mut self) -> Option<(usize, Vec<u32>)>;
+    /// Stores the answer for a piece (numbers, or JSON); false when it is
+    /// refused.
+    fn accept(&mut self, piece: usize, values: &[f64], json: Option<&str>) -> bool;
+    /// An update on a piece still under way (JSON).
+    fn progress(&mut self, _piece: usize, _json: &str) {}
+    /// A piece whose answer will never come: hand it out again.
+    fn again(&mut self, piece: usize);
 }

@@ -173,6 +173,19 @@ pub struct DiagnosticsJob {
     boot: Vec<Option<SubOptimum>>,
     /// The extraction [`DiagnosticsJob::step_points`] is filling.
     current: Option<(Item, SubExtraction)>,
+    /// Parts handed out to be computed elsewhere ([`DiagnosticsJob::take_part`]).
+    out: Vec<Item>,
+}
+
+/// A resampled extraction handed out to be computed elsewhere (the
+/// browser's workers): [`optimum_of`] of the demos at `indices` on
+/// [`DiagnosticsJob::part_grid`] for [`DiagnosticsJob::k`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Part {
+    /// Its id, for [`DiagnosticsJob::put_part`].
+    pub id: usize,
+    /// The demos of its model (repeats allowed).
+    pub indices: Vec<usize>,
 }
 
 /// One resampled extraction.
@@ -270,7 +283,59 @@ impl DiagnosticsJob {
             todo,
             done: 0,
             current: None,
+            out: Vec::new(),
             model,
+        }
+    }
+
+    /// The grid of the resampled extractions.
+    pub fn part_grid(&self) -> Grid {
+        self.grid
+    }
+
+    /// The k of the extraction diagnosed.
+    pub fn k(&self) -> f64 {
+        self.k
+    }
+
+    fn id_of(&self, item: Item) -> usize {
+        match item {
+            Item::Loo(i) => i,
+            Item::Boot(b) => self.model.demos().len() + b,
+        }
+    }
+
+    /// Hands out the next resampled extraction to be computed elsewhere;
+    /// `None` when none is left to hand out. The job is done only when every
+    /// part handed out is put back ([`DiagnosticsJob::put_part`]); the
+    /// answers may come in any order and give the same diagnostics.
+    pub fn take_part(&mut self) -> Option<Part> {
+        let item = self.todo.pop()?;
+        self.out.push(item);
+        Some(Part {
+            id: self.id_of(item),
+            indices: self.indices(item),
+        })
+    }
+
+    /// Records the answer for part `id` (`None`: it has no optimum).
+    /// Returns false, recording nothing, when `id` is not out (an answer
+    /// given twice, or for another job).
+    pub fn put_part(&mut self, id: usize, found: Option<SubOptimum>) -> bool {
+        let Some(pos) = self.out.iter().position(|&it| self.id_of(it) == id) else {
+            return false;
+        };
+        let item = self.out.swap_remove(pos);
+        self.record(item, found);
+        true
+    }
+
+    /// A part handed out whose answer will never come: it is handed out
+    /// again.
+    pub fn return_part(&mut self, id: usize) {
+        if let Some(pos) = self.out.iter().position(|&it| self.id_of(it) == id) {
+            let item = self.out.swap_remove(pos);
+            self.todo.push(item);
         }
     }
 
@@ -291,13 +356,13 @@ impl DiagnosticsJob {
 
     /// Resampled extractions done, and in all.
     pub fn progress(&self) -> (usize, usize) {
-        let open = self.todo.len() + usize::from(self.current.is_some());
+        let open = self.todo.len() + usize::from(self.current.is_some()) + self.out.len();
         (self.done, self.done + open)
     }
 
     /// Whether every part is computed.
     pub fn is_done(&self) -> bool {
-        self.todo.is_empty() && self.current.is_none()
+        self.todo.is_empty() && self.current.is_none() && self.out.is_empty()
     }
 
     fn indices(&self, item: Item) -> Vec<usize> {

@@ -22,6 +22,8 @@
 //!   the step's acceleration in unit time, m/s^2); after the last step
 //!   `-10 |y - g|` (m), `g` the demo's goal.
 
+use serde::{Deserialize, Serialize};
+
 use super::policy::Policy;
 use super::task::{Step, Task};
 use crate::{Error, Model, Result};
@@ -38,7 +40,8 @@ pub const ACT: usize = 3;
 pub const MIN_REACH_M: f64 = 1e-3;
 
 /// How the policy's output becomes the forcing term.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum ActionMode {
     /// The action is the whole forcing term (the paper).
     #[default]
@@ -61,7 +64,7 @@ impl ActionMode {
 }
 
 /// The environment's options.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct EnvOptions {
     /// Decisions per episode (1 ..= the integration steps).
     pub decisions: usize,
@@ -103,7 +106,7 @@ pub struct DmpEnv {
 }
 
 /// A deterministic run of the policy's mean.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct GreedyRun {
     /// Positions on the demo's grid (start included), demo coordinates.
     pub path: Vec<[f64; 3]>,

@@ -4,6 +4,8 @@
 //! (decisions and seconds) and how steadily it stayed reached after. The core has no clock: the caller passes the
 //! seconds so far to [`TrainingRun::step`].
 
+use serde::{Deserialize, Serialize};
+
 use super::REACHED_M;
 use super::env::{DmpEnv, EnvOptions, GreedyRun};
 use super::outcome::diverged;
@@ -11,7 +13,7 @@ use super::ppo::{IterStats, PpoConfig, Trainer};
 use crate::{Error, Model, Result};
 
 /// When a run's mean first ended within [`REACHED_M`] of the goal.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FirstReach {
     /// Decisions of training by then.
     pub decisions: usize,
@@ -21,7 +23,7 @@ pub struct FirstReach {
 
 /// A finished (or stopped) run's figures, as the CLI's table and the app's
 /// comparison show them.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunReport {
     /// The gain set's name (a preset's, "Extracted", ...).
     pub name: String,
