@@ -62,7 +62,8 @@ pub fn rl_ui(
         let l = ui.label("seed");
         ui.add(egui::DragValue::new(&mut c.seed)).labelled_by(l.id);
     });
-    ui.horizontal(|ui| {
+    // Wrapped: the two combos are wider than the side panel's default.
+    ui.horizontal_wrapped(|ui| {
         egui::ComboBox::from_label("action")
             .selected_text(c.options.mode.name())
             .show_ui(ui, |ui| {
