@@ -55,6 +55,23 @@ fn min_jerk(u: f64) -> f64 {
     u * u * u * (10.0 - 15.0 * u + 6.0 * u * u)
 }
 
+/// [`reach_demos`] as loaded demos, `synth.mcap:/demo_{i}` with header
+/// stamps: what tests build models from.
+pub fn reach_raw_demos(seed: u64, count: usize, epoch_ns: i64) -> Vec<crate::RawDemo> {
+    reach_demos(seed, count, epoch_ns)
+        .into_iter()
+        .enumerate()
+        .map(|(i, d)| crate::RawDemo {
+            name: format!("synth.mcap:/demo_{i}"),
+            file: "synth.mcap".into(),
+            topic: format!("/demo_{i}"),
+            stamps_ns: d.samples.iter().map(|s| s.0).collect(),
+            positions: d.samples.iter().map(|s| s.1).collect(),
+            time_source: crate::TimeSource::HeaderStamp,
+        })
+        .collect()
+}
+
 /// `count` demos of one reach from `seed`. Demo `i` starts recording at
 /// `epoch_ns + i * 20 s`.
 pub fn reach_demos(seed: u64, count: usize, epoch_ns: i64) -> Vec<SynthDemo> {

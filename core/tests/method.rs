@@ -16,24 +16,13 @@ use dmpscope_core::presets::preset;
 use dmpscope_core::synth;
 use dmpscope_core::{
     Error, Landscape, LandscapeJob, Model, PAPER_PRESETS, PrepSettings, PreparedDemo, RawDemo,
-    TimeSource, extract, prepare,
+    extract, prepare,
 };
 
 // ---------------------------------------------------------------- helpers
 
 fn reach_raw(seed: u64, count: usize) -> Vec<RawDemo> {
-    synth::reach_demos(seed, count, 1_700_000_000_000_000_000)
-        .into_iter()
-        .enumerate()
-        .map(|(i, d)| RawDemo {
-            name: format!("synth.mcap:/demo_{i}"),
-            file: "synth.mcap".into(),
-            topic: format!("/demo_{i}"),
-            stamps_ns: d.samples.iter().map(|s| s.0).collect(),
-            positions: d.samples.iter().map(|s| s.1).collect(),
-            time_source: TimeSource::HeaderStamp,
-        })
-        .collect()
+    synth::reach_raw_demos(seed, count, 1_700_000_000_000_000_000)
 }
 
 fn model_of(raws: &[RawDemo]) -> Model {

@@ -137,7 +137,7 @@ mod tests {
 
     use dmpscope_core::dmp::DmpSettings;
     use dmpscope_core::landscape::{Axis, AxisScale, LandscapeJob};
-    use dmpscope_core::{Model, PrepSettings, PreparedDemo, RawDemo, TimeSource, prepare, synth};
+    use dmpscope_core::{Model, PrepSettings, PreparedDemo, prepare, synth};
 
     use super::*;
 
@@ -152,18 +152,9 @@ mod tests {
     }
 
     fn model() -> Arc<Model> {
-        let demos: Vec<PreparedDemo> = synth::reach_demos(3, 3, 0)
-            .into_iter()
-            .enumerate()
-            .map(|(i, d)| RawDemo {
-                name: format!("synth.mcap:/demo_{i}"),
-                file: "synth.mcap".into(),
-                topic: format!("/demo_{i}"),
-                stamps_ns: d.samples.iter().map(|s| s.0).collect(),
-                positions: d.samples.iter().map(|s| s.1).collect(),
-                time_source: TimeSource::HeaderStamp,
-            })
-            .map(|raw| prepare(&raw, &PrepSettings::default()).expect("prepared"))
+        let demos: Vec<PreparedDemo> = synth::reach_raw_demos(3, 3, 0)
+            .iter()
+            .map(|raw| prepare(raw, &PrepSettings::default()).expect("prepared"))
             .collect();
         Arc::new(Model::new(demos, DmpSettings::default()).expect("model"))
     }
