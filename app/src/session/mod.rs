@@ -242,6 +242,11 @@ impl Session {
         self.update_point(settings);
         self.update_generalised(settings);
         self.update_rl();
+        // The browser's workers: one that failed, or none that started.
+        #[cfg(target_arch = "wasm32")]
+        for text in crate::web::pool::take_notices() {
+            self.messages.say(dmpscope_core::Level::Warning, text);
+        }
     }
 
     /// The generalisation: recomputed when the model, the operating point

@@ -52,7 +52,7 @@ struct Slot {
     alive: bool,
     in_flight: Vec<(u64, usize)>,
     _on_message: Closure<dyn FnMut(web_sys::MessageEvent)>,
-    _on_error: Closure<dyn FnMut(web_sys::ErrorEvent)>,
+    _on_error: Closure<dyn FnMut(JsValue)>,
 }
 
 /// The workers and the answers they sent.
@@ -75,6 +75,23 @@ thread_local! {
     /// The page's pool: `None` before the first landscape, `Some(None)`
     /// where workers cannot be started.
     static POOL: RefCell<Option<Option<Pool>>> = const { RefCell::new(None) };
+}
+
+thread_local! {
+    /// What the user should be told about the pool, not yet taken.
+    static NOTICES: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Logs `text` and keeps it for the app's messages.
+fn notice(text: String) {
+    log::warn!("dmpscope: {text}");
+    NOTICES.with(|n| n.borrow_mut().push(text));
+}
+
+/// What the user should be told about the workers since the last call (a
+/// worker that failed, none that could start).
+pub fn take_notices() -> Vec<String> {
+    NOTICES.with(|n| std::mem::take(&mut *n.borrow_mut()))
 }
 
 /// Runs `f` on the pool, starting it at the first call; `None` without one.
@@ -140,11 +157,17 @@ impl Pool {
         for i in 0..n {
             match Self::spawn(i, &module, &replies, &deaths) {
                 Ok(slot) => slots.push(slot),
-                Err(e) => log::warn!("dmpscope: cannot start worker {i}: {e:?}"),
+                Err(e) => notice(format!(
+                    "the browser could not start Web Worker {i} ({e:?})"
+                )),
             }
         }
         if slots.is_empty() {
-            log::warn!("dmpscope: no Web Worker could be started; the page computes the landscape");
+            notice(
+                "no Web Worker could be started: the page computes the landscape, the \
+                 diagnostics and RL itself, more slowly"
+                    .to_owned(),
+            );
             return None;
         }
         Some(Self {
@@ -208,10 +231,15 @@ impl Pool {
             },
         );
         let deaths = deaths.clone();
-        let on_error =
-            Closure::<dyn FnMut(web_sys::ErrorEvent)>::new(move |event: web_sys::ErrorEvent| {
-                deaths.borrow_mut().push((i, event.message()));
-            });
+        // A plain `Event` when the script does not load (no `message`), an
+        // `ErrorEvent` when it throws: read as a value either way.
+        let on_error = Closure::<dyn FnMut(JsValue)>::new(move |event: JsValue| {
+            let why = field(&event, "message")
+                .as_string()
+                .filter(|m| !m.is_empty())
+                .unwrap_or_else(|| "worker.js did not load".to_owned());
+            deaths.borrow_mut().push((i, why));
+        });
         worker.set_onmessage(Some(on_message.as_ref().unchecked_ref()));
         worker.set_onerror(Some(on_error.as_ref().unchecked_ref()));
         worker.post_message(&message(&[
@@ -296,6 +324,7 @@ impl Pool {
     /// Buries workers that failed: their pieces go back to their owners.
     fn bury(&mut self) {
         let deaths: Vec<(usize, String)> = self.deaths.borrow_mut().drain(..).collect();
+        let mut failed = Vec::new();
         for (i, why) in deaths {
             let Some(slot) = self.slots.get_mut(i) else {
                 continue;
@@ -303,11 +332,25 @@ impl Pool {
             if !slot.alive {
                 continue;
             }
-            log::warn!("dmpscope: worker {i} failed ({why}); the others take its tiles");
             slot.alive = false;
             slot.worker.terminate();
             self.lost.append(&mut slot.in_flight);
+            failed.push(why);
         }
+        let Some(why) = failed.first() else {
+            return;
+        };
+        // One message for the workers that failed together.
+        let n = failed.len();
+        let text = if self.any_alive() {
+            format!("{n} Web Worker(s) failed ({why}); the others take over their work")
+        } else {
+            format!(
+                "the browser's Web Workers failed ({why}): the page computes the rest itself, \
+                 more slowly"
+            )
+        };
+        notice(text);
     }
 
     /// Gives `owner` the answers of its generation, hands it back the
