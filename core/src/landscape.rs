@@ -174,27 +174,18 @@ pub struct Landscape {
 }
 
 impl Landscape {
-    /// A landscape over `grid` with no point computed yet (all NaN).
-    pub fn blank(grid: Grid) -> Self {
-        Self::empty(grid)
-    }
-
     /// `[sum d, S, max a_peak]` of `points` (`(i_dm, i_km)` of this grid)
     /// on this thread, without storing them: what a worker computes for a
     /// tile. Each point's numbers are the same bits whatever tile or order
     /// it is computed in (the kernels' lanes are independent).
     pub fn evaluate(&self, model: &Model, points: &[(u32, u32)]) -> Result<Vec<[f64; 3]>> {
-        let (n_dm, n_km) = (self.grid.dm.n as u32, self.grid.km.n as u32);
-        if let Some(&(i, j)) = points.iter().find(|&&(i, j)| i >= n_dm || j >= n_km) {
-            return Err(Error::InvalidSetting(format!(
-                "grid point ({i}, {j}) is outside the {n_dm} x {n_km} grid"
-            )));
-        }
+        self.check(points)?;
         Ok(eval_points(model, self, points))
     }
 
     /// Stores the numbers of `points` computed elsewhere
-    /// ([`Landscape::evaluate`]); a point stored twice counts once.
+    /// ([`Landscape::evaluate`]); each point once (`filled` counts every
+    /// point stored, so the caller refuses a point answered twice).
     pub fn store(&mut self, points: &[(u32, u32)], values: &[[f64; 3]]) -> Result<()> {
         if points.len() != values.len() {
             return Err(Error::InvalidSetting(format!(
@@ -203,23 +194,24 @@ impl Landscape {
                 values.len()
             )));
         }
-        let (n_dm, n_km) = (self.grid.dm.n as u32, self.grid.km.n as u32);
-        if let Some(&(i, j)) = points.iter().find(|&&(i, j)| i >= n_dm || j >= n_km) {
-            return Err(Error::InvalidSetting(format!(
-                "grid point ({i}, {j}) is outside the {n_dm} x {n_km} grid"
-            )));
-        }
-        let fresh = points
-            .iter()
-            .filter(|&&(i, j)| self.s[self.index(i as usize, j as usize)].is_nan())
-            .count();
+        self.check(points)?;
         store(self, points, values);
-        self.filled += fresh;
-        self.filled -= points.len();
         Ok(())
     }
 
-    fn empty(grid: Grid) -> Self {
+    /// Refuses points outside the grid.
+    fn check(&self, points: &[(u32, u32)]) -> Result<()> {
+        let (n_dm, n_km) = (self.grid.dm.n as u32, self.grid.km.n as u32);
+        match points.iter().find(|&&(i, j)| i >= n_dm || j >= n_km) {
+            Some(&(i, j)) => Err(Error::InvalidSetting(format!(
+                "grid point ({i}, {j}) is outside the {n_dm} x {n_km} grid"
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    /// A landscape over `grid` with no point computed yet (all NaN).
+    pub fn blank(grid: Grid) -> Self {
         let len = grid.len();
         Self {
             grid,
@@ -327,7 +319,7 @@ impl LandscapeJob {
             model,
             order: fill_order(&grid, order),
             next: 0,
-            landscape: Landscape::empty(grid),
+            landscape: Landscape::blank(grid),
         })
     }
 

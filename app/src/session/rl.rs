@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 use web_time::Instant;
 
 use super::jobs::{Step, Work};
+use super::rl_board::{RunUpdate, run_label};
 
 /// One run of a request: the gains and the seed.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -189,28 +190,20 @@ impl Work for RlWork {
             p.done = true;
             Step::Done(p.clone())
         };
-        let stats = match self.run.step(seconds) {
-            Ok(Some(stats)) => stats,
+        match self.run.step(seconds) {
+            Ok(Some(_)) => {}
             Ok(None) => return Step::Working,
             Err(e) => {
-                let r = &self.request.runs[self.progress.run];
-                let why = format!("{} gains, seed {}: {e}", r.gains_name, r.seed);
+                let why = format!("{}: {e}", run_label(&self.request, self.progress.run));
                 return stopped(&mut self.progress, why);
             }
-        };
-        let p = &mut self.progress;
-        if let Some(greedy) = self.run.greedy() {
-            p.d = self.model.path_error(self.request.demo, &greedy.path);
-            p.greedy = Some(greedy.clone());
         }
-        p.decisions = (stats.decisions, self.request.steps);
-        p.returns.clone_from(&self.run.trainer().returns);
-        p.first_reach = self.run.first_reach();
-        p.diverged = self.run.diverged();
-        p.seconds = seconds;
+        let update = RunUpdate::of(&self.run, &self.model, self.request.demo, seconds);
         // A run ends on an iteration's boundary.
-        if !self.run.done() {
-            return Step::Publish(p.clone());
+        let last = update.last;
+        self.progress.follow(update, self.request.steps);
+        if !last {
+            return Step::Publish(self.progress.clone());
         }
         match self.next_run() {
             Ok(true) => Step::Publish(self.progress.clone()),

@@ -37,24 +37,14 @@ pub struct RunUpdate {
 }
 
 impl RunUpdate {
-    /// The state of `run` (run `index` of `request`, on `model`) after
-    /// `seconds` of training; the last update when it is done.
-    pub fn of(
-        run: &TrainingRun,
-        model: &Model,
-        request: &RlRequest,
-        index: usize,
-        seconds: f64,
-    ) -> Self {
+    /// The state of `run` (on demo `demo` of `model`) after `seconds` of
+    /// training; the last update when it is done (its report is added by
+    /// [`RunUpdate::with_report`]).
+    pub fn of(run: &TrainingRun, model: &Model, demo: usize, seconds: f64) -> Self {
         let greedy = run.greedy().cloned();
         let d = greedy
             .as_ref()
-            .map_or(0.0, |g| model.path_error(request.demo, &g.path));
-        let last = run.done();
-        let name = request
-            .runs
-            .get(index)
-            .map_or("", |r| r.gains_name.as_str());
+            .map_or(0.0, |g| model.path_error(demo, &g.path));
         Self {
             decisions: run.trainer().decisions(),
             returns: run.trainer().returns.clone(),
@@ -63,21 +53,31 @@ impl RunUpdate {
             first_reach: run.first_reach(),
             diverged: run.diverged(),
             seconds,
-            report: if last {
-                run.report(model, name, seconds)
-            } else {
-                None
-            },
+            report: None,
             stopped: None,
-            last,
+            last: run.done(),
         }
+    }
+
+    /// This last update with the finished run's report (run `index` of
+    /// `request`).
+    pub fn with_report(
+        mut self,
+        run: &TrainingRun,
+        model: &Model,
+        request: &RlRequest,
+        index: usize,
+    ) -> Self {
+        let name = request
+            .runs
+            .get(index)
+            .map_or("", |r| r.gains_name.as_str());
+        self.report = run.report(model, name, self.seconds);
+        self
     }
 
     /// The last update of a run that stopped early, with why.
     pub fn stopped(request: &RlRequest, index: usize, why: &str) -> Self {
-        let what = request.runs.get(index).map_or_else(String::new, |r| {
-            format!("{} gains, seed {}: ", r.gains_name, r.seed)
-        });
         Self {
             decisions: 0,
             returns: Vec::new(),
@@ -87,9 +87,30 @@ impl RunUpdate {
             diverged: false,
             seconds: 0.0,
             report: None,
-            stopped: Some(format!("{what}{why}")),
+            stopped: Some(format!("{}: {why}", run_label(request, index))),
             last: true,
         }
+    }
+}
+
+/// "`gains` gains, seed `seed`" of run `index`, as messages name a run.
+pub fn run_label(request: &RlRequest, index: usize) -> String {
+    request.runs.get(index).map_or_else(
+        || format!("run {index}"),
+        |r| format!("{} gains, seed {}", r.gains_name, r.seed),
+    )
+}
+
+impl Progress {
+    /// Shows `update` as the run under way (of `steps` decisions).
+    pub fn follow(&mut self, update: RunUpdate, steps: usize) {
+        self.decisions = (update.decisions, steps);
+        self.returns = update.returns;
+        self.greedy = update.greedy;
+        self.d = update.d;
+        self.first_reach = update.first_reach;
+        self.diverged = update.diverged;
+        self.seconds = update.seconds;
     }
 }
 
@@ -164,13 +185,7 @@ impl RunBoard {
             ..Progress::default()
         };
         if let Some(Some(u)) = self.runs.get(run) {
-            p.decisions = (u.decisions, self.steps);
-            p.returns.clone_from(&u.returns);
-            p.greedy.clone_from(&u.greedy);
-            p.d = u.d;
-            p.first_reach = u.first_reach;
-            p.diverged = u.diverged;
-            p.seconds = u.seconds;
+            p.follow(u.clone(), self.steps);
         }
         p
     }

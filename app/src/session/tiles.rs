@@ -36,8 +36,6 @@ pub struct TiledFill {
     next: usize,
     again: VecDeque<usize>,
     stored: Vec<bool>,
-    points_done: usize,
-    total: usize,
 }
 
 impl TiledFill {
@@ -46,7 +44,6 @@ impl TiledFill {
     pub fn new(grid: Grid, generation: u64, tile_points: usize) -> Result<Self> {
         grid.validate()?;
         let order = fill_order(&grid, FillOrder::CoarseToFine);
-        let total = order.len();
         let tiles: Vec<Vec<(u32, u32)>> = order
             .chunks(tile_points.max(1))
             .map(<[(u32, u32)]>::to_vec)
@@ -58,8 +55,6 @@ impl TiledFill {
             tiles,
             next: 0,
             again: VecDeque::new(),
-            points_done: 0,
-            total,
         })
     }
 
@@ -111,18 +106,17 @@ impl TiledFill {
             return Answer::Malformed;
         }
         self.stored[tile] = true;
-        self.points_done += points.len();
         Answer::Stored
     }
 
     /// Points stored and in all.
     pub fn progress(&self) -> (usize, usize) {
-        (self.points_done, self.total)
+        (self.landscape.filled, self.landscape.grid.len())
     }
 
     /// Whether every tile is stored.
     pub fn is_complete(&self) -> bool {
-        self.points_done == self.total
+        self.landscape.is_complete()
     }
 
     /// The landscape so far (NaN where not stored yet).

@@ -2,7 +2,7 @@
 //! landscape's tiles ([`PoolFill`], bookkept by `session::tiles::TiledFill`)
 //! and a diagnosis's resampled extractions ([`PoolDiag`], bookkept by the
 //! core's `DiagnosticsJob` parts). Each is a generation of the pool
-//! ([`super::pool`]); dropping it ends the generation. When no worker is
+//! ([`super::pool::Generation`]); dropping it ends the generation. When no worker is
 //! left, the page computes the rest itself, in short slices.
 
 use std::sync::Arc;
@@ -13,7 +13,7 @@ use dmpscope_core::{Model, Result};
 use wasm_bindgen::JsValue;
 use web_time::{Duration, Instant};
 
-use super::pool::{Handout, with_pool};
+use super::pool::{Generation, Handout, json_field, with_pool};
 use crate::session::tiles::{Answer, TiledFill};
 
 /// Points per tile: about 8 ms of one core.
@@ -32,6 +32,7 @@ pub struct Exchange {
 /// A landscape filled by the pool's workers.
 pub struct PoolFill {
     fill: TiledFill,
+    _generation: Generation,
     model: Arc<Model>,
     started: Instant,
 }
@@ -61,14 +62,13 @@ impl PoolFill {
     /// page has no workers (it computes the landscape itself).
     pub fn start(model: &Arc<Model>, grid: Grid) -> Result<Option<Self>> {
         grid.validate()?;
-        let json = serde_json::to_string(&grid)
-            .map_err(|e| dmpscope_core::Error::InvalidSetting(format!("the grid: {e}")))?;
-        let fields = vec![("grid", JsValue::from_str(&json))];
-        let Some(generation) = with_pool(|p| p.begin(model, "grid", fields)) else {
+        let fields = vec![("grid", json_field("the grid", &grid)?)];
+        let Some(generation) = Generation::begin(model, "grid", fields)? else {
             return Ok(None);
         };
         Ok(Some(Self {
-            fill: TiledFill::new(grid, generation?, TILE_POINTS)?,
+            fill: TiledFill::new(grid, generation.0, TILE_POINTS)?,
+            _generation: generation,
             model: model.clone(),
             started: Instant::now(),
         }))
@@ -122,16 +122,9 @@ impl PoolFill {
     }
 }
 
-impl Drop for PoolFill {
-    fn drop(&mut self) {
-        let generation = self.fill.generation();
-        let _ = with_pool(|p| p.end(generation));
-    }
-}
-
 /// A diagnosis whose resampled extractions the pool's workers compute.
 pub struct PoolDiag {
-    generation: u64,
+    generation: Generation,
 }
 
 /// A [`DiagnosticsJob`] as a generation's handout.
@@ -174,18 +167,11 @@ impl PoolDiag {
     /// Starts the resampled extractions of `job` (of `model`) in the
     /// workers; `None` where the page has no workers.
     pub fn start(model: &Arc<Model>, job: &DiagnosticsJob) -> Result<Option<Self>> {
-        let json = serde_json::to_string(&job.part_grid())
-            .map_err(|e| dmpscope_core::Error::InvalidSetting(format!("the grid: {e}")))?;
         let fields = vec![
-            ("grid", JsValue::from_str(&json)),
+            ("grid", json_field("the grid", &job.part_grid())?),
             ("k", JsValue::from_f64(job.k())),
         ];
-        let Some(generation) = with_pool(|p| p.begin(model, "diag", fields)) else {
-            return Ok(None);
-        };
-        Ok(Some(Self {
-            generation: generation?,
-        }))
+        Ok(Generation::begin(model, "diag", fields)?.map(|generation| Self { generation }))
     }
 
     /// Takes in the workers' answers and sends new parts; with no worker
@@ -193,7 +179,7 @@ impl PoolDiag {
     /// parts stored (or 1 for a slice computed here).
     pub fn exchange(&mut self, job: &mut DiagnosticsJob, here_points: usize) -> usize {
         let mut handout = DiagHandout {
-            generation: self.generation,
+            generation: self.generation.0,
             job,
         };
         let (stored, alive) =
@@ -203,12 +189,5 @@ impl PoolDiag {
         }
         job.step_points(here_points);
         stored + 1
-    }
-}
-
-impl Drop for PoolDiag {
-    fn drop(&mut self) {
-        let generation = self.generation;
-        let _ = with_pool(|p| p.end(generation));
     }
 }

@@ -283,14 +283,13 @@ impl Pool {
                 demos: model.demos().to_vec(),
                 settings: *model.settings(),
             };
-            let json = serde_json::to_string(&inputs)
-                .map_err(|e| dmpscope_core::Error::InvalidSetting(format!("the model: {e}")))?;
+            let json = json_field("the model", &inputs)?;
             let id = self.next_id;
             self.next_id += 1;
             self.broadcast(&message(&[
                 ("kind", "model".into()),
                 ("model", (id as f64).into()),
-                ("json", json.into()),
+                ("json", json),
             ]));
             self.model = Some((model.clone(), id));
         }
@@ -403,14 +402,11 @@ impl Pool {
         }
         self.replies.borrow_mut().extend(keep);
         self.bury();
-        let mine: Vec<usize> = self
-            .lost
-            .iter()
-            .filter(|(g, _)| *g == generation)
-            .map(|(_, t)| *t)
-            .collect();
-        self.lost.retain(|(g, _)| *g != generation);
-        for piece in mine {
+        let (mine, others) = std::mem::take(&mut self.lost)
+            .into_iter()
+            .partition(|(g, _)| *g == generation);
+        self.lost = others;
+        for (_, piece) in mine {
             owner.again(piece);
         }
         for i in 0..self.slots.len() {
@@ -446,6 +442,38 @@ impl Pool {
     pub(super) fn any_alive(&self) -> bool {
         self.slots.iter().any(|s| s.alive)
     }
+}
+
+/// A live generation of the pool; dropping it ends the generation (the
+/// workers forget it, its answers still on their way are dropped).
+pub(super) struct Generation(pub(super) u64);
+
+impl Generation {
+    /// Starts a generation for `model` (see [`Pool::begin`]); `None` where
+    /// the page has no workers.
+    pub(super) fn begin(
+        model: &Arc<Model>,
+        kind: &str,
+        fields: Vec<(&str, JsValue)>,
+    ) -> Result<Option<Self>> {
+        with_pool(|p| p.begin(model, kind, fields))
+            .transpose()
+            .map(|g| g.map(Self))
+    }
+}
+
+impl Drop for Generation {
+    fn drop(&mut self) {
+        let generation = self.0;
+        let _ = with_pool(|p| p.end(generation));
+    }
+}
+
+/// JSON of `value` as a message field.
+pub(super) fn json_field(what: &str, value: &impl serde::Serialize) -> Result<JsValue> {
+    serde_json::to_string(value)
+        .map(|j| JsValue::from_str(&j))
+        .map_err(|e| dmpscope_core::Error::InvalidSetting(format!("{what}: {e}")))
 }
 
 /// What a generation hands out to the workers and takes back.

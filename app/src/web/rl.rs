@@ -9,23 +9,22 @@ use std::collections::VecDeque;
 use std::sync::Arc;
 
 use dmpscope_core::{Model, Result};
-use wasm_bindgen::JsValue;
 
-use super::pool::{Handout, with_pool};
+use super::pool::{Generation, Handout, json_field, with_pool};
 use crate::session::RlRequest;
 use crate::session::rl::Progress;
 use crate::session::rl_board::{RunBoard, RunUpdate};
 
 /// A request whose runs the pool's workers train.
 pub struct PoolRl {
-    generation: u64,
+    generation: Generation,
     todo: VecDeque<usize>,
     board: RunBoard,
 }
 
 impl Handout for PoolRl {
     fn generation(&self) -> u64 {
-        self.generation
+        self.generation.0
     }
     fn kind(&self) -> &'static str {
         "run"
@@ -63,14 +62,12 @@ impl PoolRl {
     /// Starts training `request`'s runs on `model` in the workers; `None`
     /// where the page has no workers (it trains on its own thread).
     pub fn start(model: &Arc<Model>, request: &RlRequest) -> Result<Option<Self>> {
-        let json = serde_json::to_string(request)
-            .map_err(|e| dmpscope_core::Error::InvalidSetting(format!("the RL request: {e}")))?;
-        let fields = vec![("request", JsValue::from_str(&json))];
-        let Some(generation) = with_pool(|p| p.begin(model, "rl", fields)) else {
+        let fields = vec![("request", json_field("the RL request", request)?)];
+        let Some(generation) = Generation::begin(model, "rl", fields)? else {
             return Ok(None);
         };
         Ok(Some(Self {
-            generation: generation?,
+            generation,
             todo: (0..request.runs.len()).collect(),
             board: RunBoard::new(request),
         }))
@@ -92,12 +89,5 @@ impl PoolRl {
     /// Whether every run finished, or one stopped.
     pub fn done(&self) -> bool {
         self.board.done()
-    }
-}
-
-impl Drop for PoolRl {
-    fn drop(&mut self) {
-        let generation = self.generation;
-        let _ = with_pool(|p| p.end(generation));
     }
 }

@@ -219,8 +219,9 @@ pub fn dmpscope_worker_run_step(generation: f64, run: f64, budget_ms: f64) -> Op
                     return Some(last(&RunUpdate::stopped(&request, key.1, &e.to_string())));
                 }
                 Ok(Some(_)) => {
-                    let update = RunUpdate::of(&training, &model, &request, key.1, seconds);
+                    let update = RunUpdate::of(&training, &model, request.demo, seconds);
                     if update.last {
+                        let update = update.with_report(&training, &model, &request, key.1);
                         return Some(last(&update));
                     }
                     h.runs.insert(key, (training, started));
