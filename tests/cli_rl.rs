@@ -62,7 +62,7 @@ fn rl_writes_its_results_and_repeats_them_for_a_seed() {
 }
 
 #[test]
-fn rl_options_residual_mode_a_thousand_decisions_and_the_saved_policy() {
+fn rl_options_residual_mode_a_thousand_decisions_forcing_exploration_and_the_saved_policy() {
     let dir = std::env::temp_dir().join(format!("dmpscope-cli-rl-opt-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let (out, policy) = (dir.join("r.json"), dir.join("policy.json"));
@@ -75,6 +75,8 @@ fn rl_options_residual_mode_a_thousand_decisions_and_the_saved_policy() {
         "residual",
         "--decisions",
         "1000",
+        "--explore",
+        "forcing",
         "--steps",
         "4000",
         "--out",
@@ -85,7 +87,7 @@ fn rl_options_residual_mode_a_thousand_decisions_and_the_saved_policy() {
     assert!(o.status.success(), "{}", text(&o.stderr));
     let stdout = text(&o.stdout);
     assert!(
-        stdout.contains("1000 decisions per episode, action: residual"),
+        stdout.contains("1000 decisions per episode, action: residual, exploration: forcing"),
         "{stdout}"
     );
     let r: serde_json::Value =

@@ -7,7 +7,7 @@
 
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::io::load_bytes;
-use dmpscope_core::rl::env::{ACT, ActionMode, DmpEnv, EnvOptions};
+use dmpscope_core::rl::env::{ACT, ActionMode, DmpEnv, EnvOptions, ExploreScale};
 use dmpscope_core::rl::loss::{Batch, actor_loss_grad, critic_loss_grad, log_prob};
 use dmpscope_core::rl::mlp::{Adam, Mlp, clip_grad_norm};
 use dmpscope_core::rl::norm::{ReturnScale, RunningStat};
@@ -85,6 +85,7 @@ fn a_thousand_decisions_give_the_same_return_as_a_hundred_held_ten_steps() {
     let opts = EnvOptions {
         decisions: 1000,
         mode: ActionMode::Forcing,
+        ..EnvOptions::default()
     };
     let mut fine = DmpEnv::new(&m, 0, 10.0, 100.0, opts).expect("env");
     let mut coarse = env(&m, 10.0, 100.0);
@@ -108,6 +109,7 @@ fn residual_mode_with_no_action_is_the_lfd_regeneration() {
     let opts = EnvOptions {
         decisions: 100,
         mode: ActionMode::Residual,
+        ..EnvOptions::default()
     };
     let env = DmpEnv::new(&m, 0, dm, km, opts).expect("env");
     // A policy whose mean is 0 everywhere: zero last layer.
@@ -130,6 +132,38 @@ fn residual_mode_with_no_action_is_the_lfd_regeneration() {
 }
 
 #[test]
+fn exploration_is_scaled_to_the_demos_acceleration_or_its_forcing_term() {
+    let m = model();
+    let d = &m.demos()[0];
+    let (dm, km) = (32.6, 1000.0);
+    let rms = |xs: &[[f64; 3]], a: usize| {
+        (xs.iter().map(|x| x[a] * x[a]).sum::<f64>() / xs.len() as f64).sqrt()
+    };
+    let accel = self::env(&m, dm, km);
+    let opts = EnvOptions {
+        explore: ExploreScale::Forcing,
+        ..EnvOptions::default()
+    };
+    let forcing = DmpEnv::new(&m, 0, dm, km, opts).expect("env");
+    let fitted = m.forcing(0, dm, km);
+    let scale = accel.action_scale();
+    for a in 0..ACT {
+        let want = rms(&d.ydd, a) / scale[a];
+        assert!((accel.action_size()[a] - want).abs() < 1e-12 * want);
+        let want = rms(&fitted, a) / scale[a];
+        assert!((forcing.action_size()[a] - want).abs() < 1e-12 * want);
+        // At K/M = 1000 the fitted term is mostly the spring's K (y - g).
+        assert!(forcing.action_size()[a] > 10.0 * accel.action_size()[a]);
+    }
+    // The policy starts at init_sd of it.
+    let t = Trainer::new(accel.clone(), PpoConfig::default(), 1);
+    for (ls, s) in t.policy().log_std.iter().zip(accel.action_size()) {
+        let want = (PpoConfig::default().init_sd * s).ln();
+        assert!((ls - want).abs() < 1e-12, "{ls} vs {want}");
+    }
+}
+
+#[test]
 fn bad_input_gets_clear_errors() {
     let m = model();
     for (dm, km) in [(f64::NAN, 10.0), (10.0, f64::INFINITY), (-1.0, 10.0)] {
@@ -142,6 +176,7 @@ fn bad_input_gets_clear_errors() {
         let opts = EnvOptions {
             decisions,
             mode: ActionMode::Forcing,
+            ..EnvOptions::default()
         };
         let e = DmpEnv::new(&m, 0, 10.0, 10.0, opts)
             .expect_err("decisions")
@@ -340,29 +375,6 @@ fn small_steps_give_the_numbers_of_whole_iterations() {
     }
     assert!(steps > 3 * 4, "an iteration is many steps ({steps})");
     assert_eq!(whole.policy(), sliced.policy());
-}
-
-#[test]
-fn the_initial_policy_deviation_follows_the_demos_forcing_term() {
-    let m = model();
-    let e = env(&m, 10.73, 20.71);
-    let size = e.action_size();
-    let t = Trainer::new(e, PpoConfig::default(), 1);
-    for (ls, s) in t.policy().log_std.iter().zip(&size) {
-        assert!(
-            (ls.exp() - 0.1 * s).abs() < 1e-12 * s,
-            "{} vs {}",
-            ls.exp(),
-            s
-        );
-    }
-    // The size is the fitted forcing term's RMS over the action scale.
-    let f = m.forcing(0, 10.73, 20.71);
-    let scale = DmpEnv::new(&m, 0, 10.73, 20.71, EnvOptions::default())
-        .expect("env")
-        .action_scale();
-    let rms0 = (f.iter().map(|v| v[0] * v[0]).sum::<f64>() / f.len() as f64).sqrt();
-    assert!((size[0] - (rms0 / scale[0]).max(1e-3)).abs() < 1e-12);
 }
 
 #[test]

@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use dmpscope_core::Model;
 use dmpscope_core::presets::PAPER_PRESETS;
-use dmpscope_core::rl::{ActionMode, EnvOptions, RunReport, TrainingRun};
+use dmpscope_core::rl::{ActionMode, EnvOptions, ExploreScale, RunReport, TrainingRun};
 use serde_json::json;
 
 use super::inputs::{InputArgs, load_model};
@@ -26,6 +26,25 @@ enum Mode {
     Forcing,
     /// The action is added to the demo's fitted forcing term at the gains.
     Residual,
+}
+
+/// What the policy's initial exploration is scaled to (method.md
+/// section 8).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum Explore {
+    /// The demo's own acceleration (its RMS per axis).
+    Acceleration,
+    /// The demo's fitted forcing term at the gains (its RMS per axis).
+    Forcing,
+}
+
+impl From<Explore> for ExploreScale {
+    fn from(e: Explore) -> Self {
+        match e {
+            Explore::Acceleration => Self::Acceleration,
+            Explore::Forcing => Self::Forcing,
+        }
+    }
 }
 
 impl From<Mode> for ActionMode {
@@ -66,6 +85,9 @@ pub struct Args {
     /// What the action is.
     #[arg(long, value_enum, default_value_t = Mode::Forcing)]
     mode: Mode,
+    /// What the policy's initial deviation (0.5 of it) is scaled to.
+    #[arg(long, value_enum, default_value_t = Explore::Acceleration)]
+    explore: Explore,
     /// Decisions per episode: 100 (each held 10 integration steps) or 1000
     /// (one per integration step); any count from 1 to the demo's
     /// integration steps works (each held ceil(steps / decisions)).
@@ -190,6 +212,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let options = EnvOptions {
         decisions: args.decisions,
         mode: args.mode.into(),
+        explore: args.explore.into(),
     };
     let seeds: Vec<u64> = (0..n_seeds).map(|i| args.seed + i).collect();
     let jobs: Vec<Job> = gain_sets(&args, extracted)?
@@ -237,11 +260,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let mut text = String::new();
     let _ = writeln!(
         text,
-        "RL with DMP on {} ({} decisions of training per run, {} decisions per episode, action: {}, {} run(s) at once)",
+        "RL with DMP on {} ({} decisions of training per run, {} decisions per episode, action: {}, exploration: {}, {} run(s) at once)",
         model.demos()[demo].name,
         args.steps,
         args.decisions,
         ActionMode::from(args.mode).name(),
+        ExploreScale::from(args.explore).name(),
         workers
     );
     text.push_str(&table(&outcomes));

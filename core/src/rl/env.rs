@@ -15,6 +15,9 @@
 //!   cm)` per axis, so one unit of policy output is a forcing term of the
 //!   motion's size (`forcing`, the paper's); or `A = f_fit + scale * u` with
 //!   `f_fit` the demo's fitted forcing term at the gains (`residual`).
+//! - **Exploration** ([`ExploreScale`]): the policy's initial deviation
+//!   per axis is [`super::PpoConfig::init_sd`] (0.5) times the RMS of the
+//!   demo's own acceleration `y''` (default) or of its fitted forcing term.
 //! - **Observation** (7 values): the phase `s` in 0..1, then per axis
 //!   `(y - g) / r` and `y' / r` with `r = max(|g - y0|_2, 5 cm)`.
 //! - **Rewards**, exactly the paper's: at every integration step
@@ -63,6 +66,37 @@ impl ActionMode {
     }
 }
 
+/// What the policy's initial exploration is scaled to
+/// ([`Task::action_size`]; the deviation is
+/// [`super::PpoConfig::init_sd`] times it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ExploreScale {
+    /// The RMS of the demo's own acceleration `y''`: the noise enters `y''`
+    /// one for one and the reward charges `|y''|`, so exploring costs the
+    /// same share of the demo's acceleration penalty whatever the gains.
+    #[default]
+    Acceleration,
+    /// The RMS of the demo's fitted forcing term at the gains: grows with
+    /// K/M (at K/M = 1000 it is mostly `K (y - g)`, about 100x the demo's
+    /// acceleration), so stiff gains explore with a noise that costs more
+    /// than the whole motion.
+    Forcing,
+}
+
+impl ExploreScale {
+    /// Both scales.
+    pub const ALL: [Self; 2] = [Self::Acceleration, Self::Forcing];
+
+    /// The scale's name on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Acceleration => "acceleration",
+            Self::Forcing => "forcing",
+        }
+    }
+}
+
 /// The environment's options.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct EnvOptions {
@@ -70,6 +104,9 @@ pub struct EnvOptions {
     pub decisions: usize,
     /// What the action is.
     pub mode: ActionMode,
+    /// What the initial exploration is scaled to.
+    #[serde(default)]
+    pub explore: ExploreScale,
 }
 
 impl Default for EnvOptions {
@@ -77,6 +114,7 @@ impl Default for EnvOptions {
         Self {
             decisions: DECISIONS,
             mode: ActionMode::Forcing,
+            explore: ExploreScale::Acceleration,
         }
     }
 }
@@ -98,6 +136,8 @@ pub struct DmpEnv {
     norm: f64,
     /// The fitted forcing term on the grid, at the gains.
     fitted: Vec<[f64; 3]>,
+    /// [`Task::action_size`], policy units.
+    explore: [f64; 3],
     // State.
     y: [f64; 3],
     v: [f64; 3],
@@ -168,6 +208,15 @@ impl DmpEnv {
                 "its fitted forcing term is not finite at D/M {dm}, K/M {km}"
             ));
         }
+        let scale = delta.map(|d| ACTION_SCALE * d.abs().max(0.05));
+        let sized = match options.explore {
+            ExploreScale::Acceleration => &d.ydd,
+            ExploreScale::Forcing => &fitted,
+        };
+        let explore = std::array::from_fn(|a| {
+            let ms = sized.iter().map(|f| f[a] * f[a]).sum::<f64>() / sized.len().max(1) as f64;
+            (ms.sqrt() / scale[a]).max(1e-3)
+        });
         let mut env = Self {
             dm,
             km,
@@ -177,9 +226,10 @@ impl DmpEnv {
             goal,
             steps,
             hold: steps.div_ceil(options.decisions),
-            scale: delta.map(|d| ACTION_SCALE * d.abs().max(0.05)),
+            scale,
             norm: reach.max(0.05),
             fitted,
+            explore,
             y: y0,
             v: d.yd[0],
             k: 0,
@@ -327,16 +377,11 @@ impl Task for DmpEnv {
         norm3(std::array::from_fn(|a| self.y[a] - self.goal[a]))
     }
 
-    /// The RMS over the grid of the fitted forcing term, per axis, in
-    /// policy units (divided by the action scale).
+    /// The RMS over the grid, per axis, of the demo's acceleration or of
+    /// its fitted forcing term ([`ExploreScale`]), in policy units
+    /// (divided by the action scale).
     fn action_size(&self) -> Vec<f64> {
-        (0..ACT)
-            .map(|a| {
-                let ms = self.fitted.iter().map(|f| f[a] * f[a]).sum::<f64>()
-                    / self.fitted.len().max(1) as f64;
-                (ms.sqrt() / self.scale[a]).max(1e-3)
-            })
-            .collect()
+        self.explore.to_vec()
     }
 }
 

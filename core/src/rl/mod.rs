@@ -19,7 +19,7 @@ pub mod ppo;
 pub mod run;
 pub mod task;
 
-pub use env::{ActionMode, DmpEnv, EnvOptions, GreedyRun};
+pub use env::{ActionMode, DmpEnv, EnvOptions, ExploreScale, GreedyRun};
 pub use outcome::diverged;
 pub use point_mass::PointMass;
 pub use policy::Policy;

@@ -73,7 +73,7 @@ impl Default for PpoConfig {
             anneal_over: DEFAULT_DECISIONS,
             max_grad_norm: 0.5,
             ent_coef: 0.0,
-            init_sd: 0.1,
+            init_sd: 0.5,
             norm_obs: true,
             norm_reward: true,
         }

@@ -6,7 +6,7 @@
 //! regeneration; finished runs are listed in a table (`rl_table.rs`).
 
 use dmpscope_core::presets::PAPER_PRESETS;
-use dmpscope_core::rl::{ActionMode, REACHED_M};
+use dmpscope_core::rl::{ActionMode, ExploreScale, REACHED_M};
 use eframe::egui::{self, Color32};
 use egui_plot::{Line, Plot, PlotPoints};
 
@@ -83,6 +83,18 @@ pub fn rl_ui(
                     ui.selectable_value(&mut c.options.decisions, n, format!("{n} decisions"));
                 }
             });
+        egui::ComboBox::from_label("explore")
+            .selected_text(c.options.explore.name())
+            .show_ui(ui, |ui| {
+                for e in ExploreScale::ALL {
+                    ui.selectable_value(&mut c.options.explore, e, e.name());
+                }
+            })
+            .response
+            .on_hover_text(
+                "the policy's initial deviation: half the RMS of the demo's acceleration \
+                 (default), or of its fitted forcing term (which grows with K/M)",
+            );
     });
     let run = session.rl();
     let running = run.is_some_and(|(_, p)| !p.done);
@@ -148,14 +160,15 @@ pub fn rl_ui(
         String::new()
     };
     ui.label(format!(
-        "{of}demo {} · {} seed {} (D/M {:.3}, K/M {:.3}) · {} · {} per episode",
+        "{of}demo {} · {} seed {} (D/M {:.3}, K/M {:.3}) · {} · {} per episode · explore {}",
         request.demo + 1,
         current.gains_name,
         current.seed,
         current.dm,
         current.km,
         request.options.mode.name(),
-        request.options.decisions
+        request.options.decisions,
+        request.options.explore.name()
     ));
     let (done, total) = p.decisions;
     let state = if p.cancelled { ", cancelled" } else { "" };
