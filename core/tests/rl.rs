@@ -139,7 +139,7 @@ fn exploration_is_scaled_to_the_demos_acceleration_or_its_forcing_term() {
     let rms = |xs: &[[f64; 3]], a: usize| {
         (xs.iter().map(|x| x[a] * x[a]).sum::<f64>() / xs.len() as f64).sqrt()
     };
-    let accel = self::env(&m, dm, km);
+    let accel = env(&m, dm, km);
     let opts = EnvOptions {
         explore: ExploreScale::Forcing,
         ..EnvOptions::default()
