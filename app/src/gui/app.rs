@@ -25,25 +25,27 @@ pub struct DmpApp {
     /// The user's settings (persisted).
     pub settings: Settings,
     /// The pipeline's state.
-    session: Session,
+    pub(super) session: Session,
     /// What the views remember.
     pub view: ViewState,
     dialogs: Dialogs,
     frame_log: Option<FrameLog>,
     #[cfg(feature = "testing")]
     pub(super) frame_watch: super::testing::FrameWatch,
+    /// The browser tests' requests and the state they read.
+    #[cfg(feature = "testing")]
+    pub(super) hooks: Option<super::testing::SharedHooks>,
 }
 
 impl DmpApp {
     /// The app on `files` (the bundled sample when empty), with settings
-    /// restored from eframe's storage and background work off the frame.
-    pub fn new(cc: &eframe::CreationContext<'_>, files: Vec<PathBuf>) -> Self {
+    /// restored from eframe's storage and background work on `runner` (the
+    /// platform's executor: threads natively, Web Workers in the browser).
+    pub fn new(cc: &eframe::CreationContext<'_>, files: Vec<PathBuf>, runner: Runner) -> Self {
         let settings = cc
             .storage
             .and_then(|s| eframe::get_value::<Settings>(s, SETTINGS_KEY))
             .unwrap_or_default();
-        let ctx = cc.egui_ctx.clone();
-        let runner = Runner::background(move || ctx.request_repaint());
         let last = files.last().cloned();
         let sources = files.into_iter().map(Source::Path).collect();
         let mut app = Self::with_runner(settings, sources, runner)
@@ -71,6 +73,8 @@ impl DmpApp {
             frame_log: FrameLog::from_env(),
             #[cfg(feature = "testing")]
             frame_watch: Default::default(),
+            #[cfg(feature = "testing")]
+            hooks: None,
         }
     }
 
@@ -289,18 +293,8 @@ impl eframe::App for DmpApp {
                 .apply(session::Command::SetGeneralise(Some(next)));
             self.session.update(&self.settings);
         }
-        #[cfg(all(target_arch = "wasm32", feature = "testing"))]
-        {
-            for (steps, seed) in crate::web::take_train_requests() {
-                self.start_test_training(steps, seed, &ctx);
-            }
-            for n in crate::web::take_grid_requests() {
-                self.settings.grid.dm.n = n;
-                self.settings.grid.km.n = n;
-                self.session.update(&self.settings);
-            }
-            crate::web::publish_state(self.test_state(&ctx).to_string());
-        }
+        #[cfg(feature = "testing")]
+        self.serve_test_hooks(&ctx);
 
         let before = self.settings.clone();
         let (session, s, view) = (&self.session, &mut self.settings, &mut self.view);

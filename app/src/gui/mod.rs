@@ -29,6 +29,8 @@ mod view_state;
 pub use app::DmpApp;
 pub use commands::{Command, Export, Map};
 pub use view_state::{RlChoices, ViewState};
+#[cfg(feature = "testing")]
+pub use testing::{SharedHooks, TestHooks};
 
 /// Opens the app window on `files` (the bundled sample when empty).
 #[cfg(not(target_arch = "wasm32"))]
@@ -43,7 +45,11 @@ pub fn run(files: Vec<std::path::PathBuf>) -> anyhow::Result<()> {
     eframe::run_native(
         "dmpscope",
         options,
-        Box::new(move |cc| Ok(Box::new(DmpApp::new(cc, files)))),
+        Box::new(move |cc| {
+            let ctx = cc.egui_ctx.clone();
+            let runner = crate::session::Runner::background(move || ctx.request_repaint());
+            Ok(Box::new(DmpApp::new(cc, files, runner)))
+        }),
     )
     .map_err(|e| anyhow::anyhow!("cannot open the app window: {e}"))
 }

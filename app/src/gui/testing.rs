@@ -1,12 +1,31 @@
 //! The browser tests' view of the app (feature `testing`, off in release
-//! builds): `window.dmpscope_state()` returns [`DmpApp::test_state`], and
+//! builds): [`TestHooks`], shared with whoever serves the tests (the page's
+//! `window.dmpscope_*` functions, installed by the app's `web` module),
+//! carries their requests in and [`DmpApp::test_state`] out, and
 //! [`FrameWatch`] counts frames. Nothing here recomputes the pipeline: it
 //! reads what the session already holds.
+
+use std::cell::RefCell;
+use std::rc::Rc;
 
 use eframe::egui;
 use web_time::Instant;
 
 use super::app::DmpApp;
+
+/// What the tests asked for and what they read.
+#[derive(Debug, Default)]
+pub struct TestHooks {
+    /// Training runs asked for, `(steps, seed)`, not yet started.
+    pub train: Vec<(usize, u64)>,
+    /// Grid sizes asked for (points per axis), not yet applied.
+    pub grid: Vec<usize>,
+    /// The app's state as JSON, written every frame.
+    pub state: String,
+}
+
+/// [`TestHooks`] shared between the app and the tests' entry points.
+pub type SharedHooks = Rc<RefCell<TestHooks>>;
 
 /// Frames drawn and the longest interval between frames while the
 /// landscape was computing.
@@ -33,6 +52,32 @@ impl FrameWatch {
 }
 
 impl DmpApp {
+    /// Serves the tests through `hooks` (their requests in, the state out).
+    pub fn with_test_hooks(mut self, hooks: SharedHooks) -> Self {
+        self.hooks = Some(hooks);
+        self
+    }
+
+    /// Applies the tests' requests and publishes the state (every frame).
+    pub(super) fn serve_test_hooks(&mut self, ctx: &egui::Context) {
+        let Some(hooks) = self.hooks.clone() else {
+            return;
+        };
+        let (train, grid) = {
+            let mut h = hooks.borrow_mut();
+            (std::mem::take(&mut h.train), std::mem::take(&mut h.grid))
+        };
+        for (steps, seed) in train {
+            self.start_test_training(steps, seed, ctx);
+        }
+        for n in grid {
+            self.settings.set_grid_points(n);
+            self.session.update(&self.settings);
+        }
+        let state = self.test_state(ctx).to_string();
+        hooks.borrow_mut().state = state;
+    }
+
     /// Starts training as the RL panel's Train button with the extracted
     /// gains does, on the selected demo, with the default environment.
     pub fn start_test_training(&mut self, steps: usize, seed: u64, ctx: &egui::Context) {
@@ -96,7 +141,7 @@ impl DmpApp {
             })),
             "landscape": {"done": done, "total": total},
             "landscape_points_here": crate::session::landscape::points_computed_here(),
-            "workers": workers(),
+            "workers": session.worker_stats(),
             "regen_checksum": regen_checksum,
             "rows": rows,
             "frames": self.frame_watch.frames,
@@ -136,17 +181,5 @@ impl DmpApp {
                 Err(e) => serde_json::json!({ "error": e }),
             }),
         })
-    }
-}
-
-/// The browser's worker pool, as the tests see it (`null` natively).
-fn workers() -> serde_json::Value {
-    #[cfg(target_arch = "wasm32")]
-    {
-        serde_json::to_value(crate::web::pool::stats()).unwrap_or_default()
-    }
-    #[cfg(not(target_arch = "wasm32"))]
-    {
-        serde_json::Value::Null
     }
 }

@@ -8,56 +8,23 @@
 //! learning curve with the native CLI's, and `window.dmpscope_grid(n)`,
 //! which sets an n x n grid as the grid settings do.
 //!
-//! The landscape and the diagnostics' resampled extractions are computed
-//! by Web Workers ([`pool`] and [`fills`]: the page's side, [`worker`]: the
+//! The app's work runs on [`WebExecutor`]: jobs in slices on the page's
+//! event loop, and the landscape's tiles, the diagnostics' resampled
+//! extractions and RL runs handed out by the session to Web Workers
+//! (`transport.rs`: the page's side of the messages, [`worker`]: the
 //! worker's, `web/worker.js` the glue), each with its own instance of this
 //! module; the page's thread moves messages and draws.
 
-pub mod fills;
-pub mod pool;
-pub mod rl;
+mod executor;
+mod transport;
 pub mod worker;
 
 use eframe::wasm_bindgen::JsCast as _;
 use eframe::web_sys;
 
 use crate::gui::DmpApp;
-
-#[cfg(feature = "testing")]
-thread_local! {
-    /// The JSON the test hook returns, written by the app every frame.
-    static STATE: std::cell::RefCell<String> = std::cell::RefCell::new("{}".to_owned());
-}
-
-/// Replaces what `window.dmpscope_state()` returns.
-#[cfg(feature = "testing")]
-pub fn publish_state(json: String) {
-    STATE.with(|s| *s.borrow_mut() = json);
-}
-
-#[cfg(feature = "testing")]
-thread_local! {
-    /// Training runs the test asked for, `(steps, seed)`, not yet started.
-    static TRAIN: std::cell::RefCell<Vec<(usize, u64)>> = const { std::cell::RefCell::new(Vec::new()) };
-}
-
-/// The training runs the test asked for since the last call.
-#[cfg(feature = "testing")]
-pub fn take_train_requests() -> Vec<(usize, u64)> {
-    TRAIN.with(|t| std::mem::take(&mut *t.borrow_mut()))
-}
-
-#[cfg(feature = "testing")]
-thread_local! {
-    /// Grid sizes the test asked for (points per axis), not yet applied.
-    static GRID: std::cell::RefCell<Vec<usize>> = const { std::cell::RefCell::new(Vec::new()) };
-}
-
-/// The grid sizes the test asked for since the last call.
-#[cfg(feature = "testing")]
-pub fn take_grid_requests() -> Vec<usize> {
-    GRID.with(|g| std::mem::take(&mut *g.borrow_mut()))
-}
+use crate::session::Runner;
+pub use executor::WebExecutor;
 
 #[cfg(feature = "testing")]
 thread_local! {
@@ -76,21 +43,27 @@ fn wake_app() {
     });
 }
 
+/// Installs `window.dmpscope_state()`, `dmpscope_train()` and
+/// `dmpscope_grid()` over `hooks` (the app reads the requests and writes
+/// the state every frame).
 #[cfg(feature = "testing")]
-fn install_hook() {
+fn install_hooks(hooks: &crate::gui::SharedHooks) {
     use eframe::wasm_bindgen::prelude::Closure;
-    let hook = Closure::<dyn Fn() -> String>::new(|| STATE.with(|s| s.borrow().clone()));
-    let train = Closure::<dyn Fn(f64, f64)>::new(|steps: f64, seed: f64| {
-        TRAIN.with(|t| t.borrow_mut().push((steps as usize, seed as u64)));
+    let h = hooks.clone();
+    let state = Closure::<dyn Fn() -> String>::new(move || h.borrow().state.clone());
+    let h = hooks.clone();
+    let train = Closure::<dyn Fn(f64, f64)>::new(move |steps: f64, seed: f64| {
+        h.borrow_mut().train.push((steps as usize, seed as u64));
         wake_app();
     });
-    let grid = Closure::<dyn Fn(f64)>::new(|n: f64| {
-        GRID.with(|g| g.borrow_mut().push(n as usize));
+    let h = hooks.clone();
+    let grid = Closure::<dyn Fn(f64)>::new(move |n: f64| {
+        h.borrow_mut().grid.push(n as usize);
         wake_app();
     });
     if let Some(window) = web_sys::window() {
         let _ = js_sys::Reflect::set(&window, &"dmpscope_grid".into(), &grid.into_js_value());
-        let _ = js_sys::Reflect::set(&window, &"dmpscope_state".into(), &hook.into_js_value());
+        let _ = js_sys::Reflect::set(&window, &"dmpscope_state".into(), &state.into_js_value());
         let _ = js_sys::Reflect::set(&window, &"dmpscope_train".into(), &train.into_js_value());
     }
 }
@@ -103,7 +76,11 @@ pub fn start() {
         return;
     };
     #[cfg(feature = "testing")]
-    install_hook();
+    let hooks = {
+        let hooks = crate::gui::SharedHooks::default();
+        install_hooks(&hooks);
+        hooks
+    };
     let Some(canvas) = document
         .get_element_by_id("dmpscope_canvas")
         .and_then(|e| e.dyn_into::<web_sys::HtmlCanvasElement>().ok())
@@ -118,7 +95,12 @@ pub fn start() {
                 Box::new(|cc| {
                     #[cfg(feature = "testing")]
                     CONTEXT.with(|c| *c.borrow_mut() = Some(cc.egui_ctx.clone()));
-                    Ok(Box::new(DmpApp::new(cc, Vec::new())))
+                    let ctx = cc.egui_ctx.clone();
+                    let executor = WebExecutor::new(move || ctx.request_repaint());
+                    let app = DmpApp::new(cc, Vec::new(), Runner::new(std::sync::Arc::new(executor)));
+                    #[cfg(feature = "testing")]
+                    let app = app.with_test_hooks(hooks);
+                    Ok(Box::new(app))
                 }),
             )
             .await;

@@ -318,6 +318,13 @@ impl DiagnosticsJob {
         })
     }
 
+    /// The demos of part `id`, while it is handed out (a copy of it for
+    /// another worker); `None` when it is not out.
+    pub fn part_out(&self, id: usize) -> Option<Vec<usize>> {
+        let item = self.out.iter().find(|&&it| self.id_of(it) == id)?;
+        Some(self.indices(*item))
+    }
+
     /// Records the answer for part `id` (`None`: it has no optimum).
     /// Returns false, recording nothing, when `id` is not out (an answer
     /// given twice, or for another job).

@@ -70,7 +70,7 @@ fn harness() -> Harness<'static, DmpApp> {
     let mut h = Harness::builder()
         .with_size([1280.0, 800.0])
         .wgpu_setup(lavapipe())
-        .with_options(SnapshotOptions::new().output_path("../tests/snapshots"))
+        .with_options(SnapshotOptions::new().output_path("tests/snapshots"))
         .build_eframe(move |cc| {
             DmpApp::with_runner(settings, Vec::new(), Runner::inline())
                 .with_render_state(cc.wgpu_render_state.as_ref())

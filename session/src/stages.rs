@@ -228,7 +228,7 @@ impl Session {
         };
         if self.landscape.as_ref().is_none_or(|l| l.key != key) {
             self.runs.landscapes += 1;
-            let job = match LandscapeWork::new(model, settings.grid, self.runner.threaded()) {
+            let job = match LandscapeWork::new(model, settings.grid, &self.runner) {
                 Ok(work) => {
                     let mut job = self.runner.start("the landscape", work);
                     if let Some(n) = job.take_notice() {
@@ -368,7 +368,7 @@ impl Session {
                 landscape.clone(),
                 found.clone(),
                 settings.diagnostics,
-                self.runner.threaded(),
+                &self.runner,
             );
             self.runs.diagnostics += 1;
             let mut job = self.runner.start("the diagnostics", work);
@@ -541,7 +541,7 @@ impl Session {
                 .say(Level::Warning, "RL needs a model: open demos first");
             return;
         };
-        match RlWork::new(model, request.clone()) {
+        match RlWork::new(model, request.clone(), &self.runner) {
             Ok(work) => {
                 let progress = work.progress().clone();
                 let mut job = self.runner.start("RL training", work);

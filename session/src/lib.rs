@@ -22,16 +22,22 @@
 //! model                                       -> the RL run stays or goes
 //! ```
 //!
-//! Background work runs through one [`jobs::Runner`]; with
+//! Background work runs through one [`jobs::Runner`] on the
+//! [`executor::Executor`] the platform hands the session (threads natively,
+//! Web Workers in the browser, a fake in tests); with
 //! [`jobs::Runner::inline`] every job finishes inside `update`, so tests
-//! drive the session synchronously, without egui and without sleeps.
+//! drive the session synchronously, without egui and without sleeps. This
+//! crate names no GUI and no platform: cargo refuses it egui, eframe, wgpu
+//! and web-sys.
 
 mod commands;
 pub mod diagnostics;
+pub mod executor;
 pub mod generalise;
 pub mod jobs;
 pub mod landscape;
 pub mod messages;
+pub mod pooled;
 pub mod rl;
 pub mod rl_board;
 pub mod settings;
@@ -39,6 +45,8 @@ pub mod sources;
 mod stages;
 mod status;
 pub mod tiles;
+pub mod worker_side;
+pub mod workers;
 
 use std::collections::BTreeSet;
 use std::sync::Arc;
@@ -53,7 +61,9 @@ use dmpscope_core::{
 pub use commands::Command;
 pub use diagnostics::DiagSnapshot;
 pub use generalise::{GenSource, GenView, GeneraliseSpec};
-pub use jobs::{PageTime, Runner};
+pub use executor::{Executor, PageTime};
+pub use jobs::Runner;
+pub use workers::WorkerStats;
 pub use landscape::{Shown, Snapshot};
 pub use rl::{Progress as RlProgress, RlRequest, RlRun};
 pub use settings::Settings;
@@ -242,9 +252,8 @@ impl Session {
         self.update_point(settings);
         self.update_generalised(settings);
         self.update_rl();
-        // The browser's workers: one that failed, or none that started.
-        #[cfg(target_arch = "wasm32")]
-        for text in crate::web::pool::take_notices() {
+        // The executor's workers: one that failed, or none that started.
+        for text in self.runner.take_notices() {
             self.messages.say(dmpscope_core::Level::Warning, text);
         }
     }
@@ -455,6 +464,11 @@ impl Session {
             || self.extracting()
             || self.diagnosing()
             || self.rl.as_ref().is_some_and(|r| r.job.is_some())
+    }
+
+    /// What the executor's pool of workers has done (zeros without one).
+    pub fn worker_stats(&self) -> WorkerStats {
+        self.runner.worker_stats()
     }
 
     /// Work done on the caller's thread by the landscape (the browser's

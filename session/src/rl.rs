@@ -11,11 +11,13 @@ use std::sync::Arc;
 
 use dmpscope_core::rl::{EnvOptions, FirstReach, GreedyRun, RunReport, TrainingRun};
 use dmpscope_core::{Error, Model, Result};
-use serde::{Deserialize, Serialize};
-use web_time::Instant;
+use std::time::Duration;
 
-use super::jobs::{Step, Work};
-use super::rl_board::{RunUpdate, run_label};
+use serde::{Deserialize, Serialize};
+
+use crate::jobs::{Clock, Runner, Step, Work};
+use crate::pooled::PoolRl;
+use crate::rl_board::{RunUpdate, run_label};
 
 /// One run of a request: the gains and the seed.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -74,15 +76,15 @@ pub struct Progress {
 }
 
 /// Trains the runs of one request: one after the other on this thread, or
-/// in the browser in its workers, as many at once as it has.
+/// in the executor's workers, as many at once as it has.
 pub struct RlWork {
     run: TrainingRun,
     model: Arc<Model>,
     request: RlRequest,
-    started: Instant,
+    clock: Clock,
+    started: Duration,
     progress: Progress,
-    #[cfg(target_arch = "wasm32")]
-    pool: Option<crate::web::rl::PoolRl>,
+    pool: Option<PoolRl>,
 }
 
 fn start(model: &Model, request: &RlRequest, i: usize) -> Result<TrainingRun> {
@@ -102,9 +104,10 @@ fn start(model: &Model, request: &RlRequest, i: usize) -> Result<TrainingRun> {
 }
 
 impl RlWork {
-    /// The work of `request` on `model`; every run's settings are checked
+    /// The work of `request` on `model` on `runner`'s executor (its workers
+    /// train the runs where it has them); every run's settings are checked
     /// before the first starts.
-    pub fn new(model: Arc<Model>, request: RlRequest) -> Result<Self> {
+    pub fn new(model: Arc<Model>, request: RlRequest, runner: &Runner) -> Result<Self> {
         for i in 1..request.runs.len() {
             start(&model, &request, i)?;
         }
@@ -113,15 +116,18 @@ impl RlWork {
             decisions: (0, request.steps),
             ..Progress::default()
         };
-        #[cfg(target_arch = "wasm32")]
-        let pool = crate::web::rl::PoolRl::start(&model, &request)?;
+        let pool = match runner.workers() {
+            Some(workers) => PoolRl::start(&workers, &model, &request)?,
+            None => None,
+        };
+        let clock = runner.clock();
         Ok(Self {
             run,
             model,
             request,
-            started: Instant::now(),
+            started: clock.now(),
+            clock,
             progress,
-            #[cfg(target_arch = "wasm32")]
             pool,
         })
     }
@@ -144,7 +150,7 @@ impl RlWork {
         }
         p.run += 1;
         self.run = start(&self.model, &self.request, p.run)?;
-        self.started = Instant::now();
+        self.started = self.clock.now();
         *p = Progress {
             run: p.run,
             decisions: (0, self.request.steps),
@@ -159,7 +165,6 @@ impl Work for RlWork {
     type Output = Progress;
 
     fn step(&mut self) -> Step<Progress> {
-        #[cfg(target_arch = "wasm32")]
         if let Some(pool) = &mut self.pool {
             match pool.exchange() {
                 Some(stored) => {
@@ -174,9 +179,10 @@ impl Work for RlWork {
                     };
                 }
                 None => {
-                    log::warn!("dmpscope: no worker left; the page trains the runs from the start");
+                    // No worker left: the runs are trained here, from the
+                    // start (the pool's notice says so).
                     self.pool = None;
-                    self.started = Instant::now();
+                    self.started = self.clock.now();
                     self.progress = Progress {
                         decisions: (0, self.request.steps),
                         ..Progress::default()
@@ -184,7 +190,7 @@ impl Work for RlWork {
                 }
             }
         }
-        let seconds = self.started.elapsed().as_secs_f64();
+        let seconds = (self.clock.now() - self.started).as_secs_f64();
         let stopped = |p: &mut Progress, why: String| {
             p.stopped = Some(why);
             p.done = true;

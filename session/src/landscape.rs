@@ -6,10 +6,12 @@
 use std::sync::Arc;
 
 use dmpscope_core::landscape::{FillOrder, Grid, Landscape, LandscapeJob};
-use dmpscope_core::{Model, Result};
-use web_time::{Duration, Instant};
+use std::time::Duration;
 
-use super::jobs::{Step, Work};
+use dmpscope_core::{Model, Result};
+
+use crate::jobs::{Clock, Runner, Step, Work};
+use crate::pooled::PoolFill;
 
 /// Points per step natively (all cores per step).
 const TILE: usize = 1024;
@@ -41,7 +43,9 @@ impl Snapshot {
 /// Fills a landscape in steps.
 pub struct LandscapeWork {
     engine: Engine,
+    clock: Clock,
     threaded: bool,
+    parallel: bool,
     computed: Duration,
     next_preview: Duration,
 }
@@ -50,9 +54,8 @@ pub struct LandscapeWork {
 enum Engine {
     /// By this work itself (natively: on all cores).
     Here(LandscapeJob),
-    /// In the browser's workers; this work only moves tiles.
-    #[cfg(target_arch = "wasm32")]
-    Workers(crate::web::fills::PoolFill),
+    /// In the executor's workers; this work only moves tiles.
+    Workers(PoolFill),
 }
 
 /// Points computed by [`LandscapeWork`]s themselves, not by workers (the
@@ -65,20 +68,23 @@ pub fn points_computed_here() -> usize {
 }
 
 impl LandscapeWork {
-    /// The work of filling `grid` for `model`; `threaded` when it has a
-    /// thread of its own. In the browser the points are computed by the
-    /// page's workers when it has them (`web::pool`), here otherwise.
-    pub fn new(model: Arc<Model>, grid: Grid, threaded: bool) -> Result<Self> {
-        #[cfg(target_arch = "wasm32")]
-        let engine = match crate::web::fills::PoolFill::start(&model, grid)? {
+    /// The work of filling `grid` for `model` on `runner`'s executor: by
+    /// its workers where it has them, here otherwise.
+    pub fn new(model: Arc<Model>, grid: Grid, runner: &Runner) -> Result<Self> {
+        let clock = runner.clock();
+        let pooled = match runner.workers() {
+            Some(workers) => PoolFill::start(&workers, &model, grid, clock.clone())?,
+            None => None,
+        };
+        let engine = match pooled {
             Some(fill) => Engine::Workers(fill),
             None => Engine::Here(LandscapeJob::new(model, grid, FillOrder::CoarseToFine)?),
         };
-        #[cfg(not(target_arch = "wasm32"))]
-        let engine = Engine::Here(LandscapeJob::new(model, grid, FillOrder::CoarseToFine)?);
         Ok(Self {
             engine,
-            threaded,
+            clock,
+            threaded: runner.threaded(),
+            parallel: runner.parallel(),
             computed: Duration::ZERO,
             next_preview: FIRST_PREVIEW,
         })
@@ -87,7 +93,6 @@ impl LandscapeWork {
     fn snapshot(&self) -> Snapshot {
         let ((done, total), landscape) = match &self.engine {
             Engine::Here(job) => (job.progress(), job.landscape()),
-            #[cfg(target_arch = "wasm32")]
             Engine::Workers(fill) => (fill.progress(), fill.landscape()),
         };
         Snapshot {
@@ -102,22 +107,21 @@ impl Work for LandscapeWork {
     type Output = Snapshot;
 
     fn step(&mut self) -> Step<Snapshot> {
-        let start = Instant::now();
+        let start = self.clock.now();
         let done = match &mut self.engine {
             Engine::Here(job) => {
                 let before = job.progress().0;
                 // Natively a step uses every core (rayon) even off a thread
-                // of its own; the browser has one.
-                let done = if cfg!(target_arch = "wasm32") {
-                    job.step(SLICE_STEP)
-                } else {
+                // of its own; the browser's page has one.
+                let done = if self.parallel {
                     job.step_par(TILE)
+                } else {
+                    job.step(SLICE_STEP)
                 };
                 let points = job.progress().0 - before;
                 POINTS_HERE.fetch_add(points, std::sync::atomic::Ordering::Relaxed);
                 done
             }
-            #[cfg(target_arch = "wasm32")]
             Engine::Workers(fill) => {
                 let exchange = fill.exchange();
                 POINTS_HERE.fetch_add(exchange.points_here, std::sync::atomic::Ordering::Relaxed);
@@ -129,7 +133,7 @@ impl Work for LandscapeWork {
                 }
                 // Previews on the wall clock (the work is elsewhere), each
                 // waiting twice as long as the last: a frame under software
-                // WebGL costs the workers a core for ~250 ms.
+                // WebGL costs the browser's workers a core for ~250 ms.
                 if fill.since_start() >= self.next_preview {
                     self.next_preview = fill.since_start() * 2;
                     return Step::Publish(self.snapshot());
@@ -137,7 +141,7 @@ impl Work for LandscapeWork {
                 return Step::Working;
             }
         };
-        self.computed += start.elapsed();
+        self.computed += self.clock.now() - start;
         if done {
             Step::Done(self.snapshot())
         } else if self.threaded || self.computed >= self.next_preview {

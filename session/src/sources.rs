@@ -15,9 +15,9 @@ use super::jobs::{Job, Once, Runner, Update};
 
 /// The bundled samples' bytes, shared by every source made of them.
 static REACH10: LazyLock<Arc<[u8]>> =
-    LazyLock::new(|| Arc::from(&include_bytes!("../../../assets/reach10.mcap")[..]));
+    LazyLock::new(|| Arc::from(&include_bytes!("../../assets/reach10.mcap")[..]));
 static PLANTED8: LazyLock<Arc<[u8]>> =
-    LazyLock::new(|| Arc::from(&include_bytes!("../../../assets/planted8.mcap")[..]));
+    LazyLock::new(|| Arc::from(&include_bytes!("../../assets/planted8.mcap")[..]));
 
 /// A recording to load: a file or folder on disk, or bytes with a name (a
 /// browser upload or drop, a bundled sample).

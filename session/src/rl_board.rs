@@ -196,7 +196,7 @@ mod tests {
     use dmpscope_core::rl::EnvOptions;
 
     use super::*;
-    use crate::session::rl::RlRun;
+    use crate::rl::RlRun;
 
     fn request(n: usize) -> RlRequest {
         RlRequest {

@@ -1,9 +1,9 @@
 //! The diagnostics of the extraction as a [`Work`] (method.md section 9):
 //! the core's [`DiagnosticsJob`] made in its first step (depth, balance,
 //! shares, the S minimum), then its resampled extractions (leave-one-out,
-//! bootstrap) a batch per step natively and, in the browser, in the page's
-//! workers (`web::fills::PoolDiag`; a few landscape points per step on the
-//! page where it has none), each step publishing a [`DiagSnapshot`] for the
+//! bootstrap) a batch per step natively and, in the executor's
+//! workers where it has them ([`PoolDiag`]; a few landscape points per
+//! step where it has none), each step publishing a [`DiagSnapshot`] for the
 //! views to show as results come.
 
 use std::sync::Arc;
@@ -12,10 +12,13 @@ use dmpscope_core::diagnostics::{
     DiagAbout, DiagSettings, Diagnostics, DiagnosticsJob, SubOptimum,
 };
 use dmpscope_core::landscape::Landscape;
-use dmpscope_core::{Extraction, Model};
-use web_time::{Duration, Instant};
+use std::time::Duration;
 
-use super::jobs::{Step, Work};
+use dmpscope_core::{Extraction, Model};
+
+use crate::jobs::{Clock, Runner, Step, Work};
+use crate::pooled::PoolDiag;
+use crate::workers::Workers;
 
 /// Landscape points per step in the browser (a slice holds several).
 const SLICE_POINTS: usize = 48;
@@ -59,27 +62,31 @@ struct Pending {
 pub struct DiagnosticsWork {
     pending: Option<Pending>,
     job: Option<DiagnosticsJob>,
-    /// The browser's workers computing the resampled extractions.
-    #[cfg(target_arch = "wasm32")]
-    pool: Option<crate::web::fills::PoolDiag>,
-    #[cfg(target_arch = "wasm32")]
-    started: Instant,
+    /// The executor's workers, and the generation computing the resampled
+    /// extractions there.
+    workers: Option<Arc<dyn Workers>>,
+    pool: Option<PoolDiag>,
+    clock: Clock,
+    started: Duration,
     threaded: bool,
+    parallel: bool,
     /// Compute time so far, and when the next preview is due.
     computed: Duration,
     next_preview: Duration,
 }
 
 impl DiagnosticsWork {
-    /// The diagnostics of `extraction` on `landscape` (complete) of `model`;
-    /// `threaded` when the work has a thread of its own.
+    /// The diagnostics of `extraction` on `landscape` (complete) of `model`
+    /// on `runner`'s executor (its workers compute the resampled
+    /// extractions where it has them).
     pub fn new(
         model: Arc<Model>,
         landscape: Landscape,
         extraction: Extraction,
         settings: DiagSettings,
-        threaded: bool,
+        runner: &Runner,
     ) -> Self {
+        let clock = runner.clock();
         Self {
             pending: Some(Pending {
                 model,
@@ -88,11 +95,12 @@ impl DiagnosticsWork {
                 settings,
             }),
             job: None,
-            #[cfg(target_arch = "wasm32")]
+            workers: runner.workers(),
             pool: None,
-            #[cfg(target_arch = "wasm32")]
-            started: Instant::now(),
-            threaded,
+            started: clock.now(),
+            clock,
+            threaded: runner.threaded(),
+            parallel: runner.parallel(),
             computed: Duration::ZERO,
             next_preview: PREVIEW_EVERY,
         }
@@ -115,15 +123,11 @@ impl Work for DiagnosticsWork {
 
     fn step(&mut self) -> Step<DiagSnapshot> {
         if let Some(p) = self.pending.take() {
-            #[cfg(target_arch = "wasm32")]
             let model = p.model.clone();
             let job = DiagnosticsJob::new(p.model, &p.landscape, &p.extraction, p.settings);
-            #[cfg(target_arch = "wasm32")]
-            {
-                self.pool = crate::web::fills::PoolDiag::start(&model, &job)
-                    .ok()
-                    .flatten();
-                self.started = Instant::now();
+            if let Some(workers) = &self.workers {
+                self.pool = PoolDiag::start(workers, &model, &job).ok().flatten();
+                self.started = self.clock.now();
             }
             let snapshot = Self::snapshot(&job);
             let done = job.is_done();
@@ -137,7 +141,6 @@ impl Work for DiagnosticsWork {
         let Some(job) = &mut self.job else {
             return Step::Working;
         };
-        #[cfg(target_arch = "wasm32")]
         if let Some(pool) = &mut self.pool {
             let stored = pool.exchange(job, SLICE_POINTS);
             if job.is_done() {
@@ -147,23 +150,23 @@ impl Work for DiagnosticsWork {
                 return Step::Waiting;
             }
             // Previews on the wall clock (the work is elsewhere).
-            let elapsed = self.started.elapsed();
+            let elapsed = self.clock.now() - self.started;
             if elapsed >= self.next_preview {
                 self.next_preview = elapsed * 3 / 2 + PREVIEW_EVERY;
                 return Step::Publish(Self::snapshot(job));
             }
             return Step::Working;
         }
-        let start = Instant::now();
-        let done = if cfg!(target_arch = "wasm32") {
-            job.step_points(SLICE_POINTS)
-        } else {
+        let start = self.clock.now();
+        let done = if self.parallel {
             // A couple of extractions per core per step: every core busy,
             // a preview every ~50 ms.
             let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
             job.step_par(2 * cores)
+        } else {
+            job.step_points(SLICE_POINTS)
         };
-        self.computed += start.elapsed();
+        self.computed += self.clock.now() - start;
         if done {
             Step::Done(Self::snapshot(job))
         } else if self.threaded || self.computed >= self.next_preview {

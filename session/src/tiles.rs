@@ -6,8 +6,8 @@
 //! for another generation (a landscape that was replaced or cancelled), for
 //! a tile already stored, or of the wrong size is refused, so nothing stale
 //! or malformed reaches the view. A tile whose worker died is handed out
-//! again. Pure bookkeeping, no JavaScript: the pool that moves the messages
-//! is `web::pool`.
+//! again. Pure bookkeeping: the pool that moves the messages is
+//! [`crate::workers`].
 
 use std::collections::VecDeque;
 
@@ -76,6 +76,12 @@ impl TiledFill {
             None => return None,
         };
         Some((tile, &self.tiles[tile]))
+    }
+
+    /// The points of `tile` while it is not stored (a copy of it for
+    /// another worker).
+    pub fn tile_points(&self, tile: usize) -> Option<&[(u32, u32)]> {
+        (self.stored.get(tile) == Some(&false)).then(|| self.tiles[tile].as_slice())
     }
 
     /// A tile handed out whose answer will never come (its worker died):

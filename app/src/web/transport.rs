@@ -1,0 +1,234 @@
+//! The page's side of the browser's workers, as the session's
+//! [`Transport`]: dedicated Web Workers (`web/worker.js`), as many as
+//! `navigator.hardwareConcurrency` (at least 2, at most 8), each running
+//! its own instance of this module (the page hands them its compiled
+//! `WebAssembly.Module`). Plain message passing, no shared memory, so the
+//! page works on any static host. What is handed out when, and what
+//! happens when a worker fails, is the session's
+//! [`Dispatcher`](dmpscope_session::workers::Dispatcher); this file only
+//! turns its messages into JavaScript objects and back.
+
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use dmpscope_session::worker_side::ModelInputs;
+use dmpscope_session::workers::{FromWorker, Reply, Setup, ToWorker, Transport};
+use eframe::web_sys;
+use wasm_bindgen::JsCast as _;
+use wasm_bindgen::prelude::*;
+
+/// Workers at most, whatever the machine says.
+const MAX_WORKERS: usize = 8;
+
+/// One worker and its message handlers.
+struct Slot {
+    worker: web_sys::Worker,
+    _on_message: Closure<dyn FnMut(web_sys::MessageEvent)>,
+    _on_error: Closure<dyn FnMut(JsValue)>,
+}
+
+/// The page's Web Workers and what they sent.
+pub struct WebTransport {
+    slots: Vec<Slot>,
+    inbox: Rc<RefCell<Vec<FromWorker>>>,
+}
+
+/// A message: a plain object of these fields.
+fn message(pairs: &[(&str, JsValue)]) -> JsValue {
+    let object = js_sys::Object::new();
+    for (key, value) in pairs {
+        let _ = js_sys::Reflect::set(&object, &JsValue::from_str(key), value);
+    }
+    object.into()
+}
+
+fn field(data: &JsValue, key: &str) -> JsValue {
+    js_sys::Reflect::get(data, &JsValue::from_str(key)).unwrap_or(JsValue::UNDEFINED)
+}
+
+/// JSON of `value` as a message field.
+fn json(value: &impl serde::Serialize) -> Result<JsValue, String> {
+    serde_json::to_string(value)
+        .map(|j| JsValue::from_str(&j))
+        .map_err(|e| e.to_string())
+}
+
+impl WebTransport {
+    /// Starts the workers; the notices say which could not start. `None`
+    /// where none could.
+    pub fn start() -> (Option<Self>, Vec<String>) {
+        let mut notices = Vec::new();
+        let Some(window) = web_sys::window() else {
+            return (None, notices);
+        };
+        let cores = window.navigator().hardware_concurrency();
+        let n = if cores.is_finite() { cores as usize } else { 2 }.clamp(2, MAX_WORKERS);
+        let inbox = Rc::new(RefCell::new(Vec::new()));
+        let module = wasm_bindgen::module();
+        let mut slots = Vec::new();
+        for i in 0..n {
+            // Worker numbers are positions among those that started.
+            match Self::spawn(slots.len(), &module, &inbox) {
+                Ok(slot) => slots.push(slot),
+                Err(e) => notices.push(format!(
+                    "the browser could not start Web Worker {i} ({e:?})"
+                )),
+            }
+        }
+        if slots.is_empty() {
+            notices.push(
+                "no Web Worker could be started: the page computes the landscape, the \
+                 diagnostics and RL itself, more slowly"
+                    .to_owned(),
+            );
+            return (None, notices);
+        }
+        (Some(Self { slots, inbox }), notices)
+    }
+
+    fn spawn(
+        i: usize,
+        module: &JsValue,
+        inbox: &Rc<RefCell<Vec<FromWorker>>>,
+    ) -> Result<Slot, JsValue> {
+        let options = web_sys::WorkerOptions::new();
+        options.set_type(web_sys::WorkerType::Module);
+        let worker = web_sys::Worker::new_with_options("./worker.js", &options)?;
+        let to_inbox = inbox.clone();
+        let on_message = Closure::<dyn FnMut(web_sys::MessageEvent)>::new(
+            move |event: web_sys::MessageEvent| {
+                to_inbox.borrow_mut().push(read_reply(i, &event.data()));
+            },
+        );
+        let to_inbox = inbox.clone();
+        // A plain `Event` when the script does not load (no `message`), an
+        // `ErrorEvent` when it throws: read as a value either way.
+        let on_error = Closure::<dyn FnMut(JsValue)>::new(move |event: JsValue| {
+            let why = field(&event, "message")
+                .as_string()
+                .filter(|m| !m.is_empty())
+                .unwrap_or_else(|| "worker.js did not load".to_owned());
+            to_inbox
+                .borrow_mut()
+                .push(FromWorker::Died { worker: i, why });
+        });
+        worker.set_onmessage(Some(on_message.as_ref().unchecked_ref()));
+        worker.set_onerror(Some(on_error.as_ref().unchecked_ref()));
+        worker.post_message(&message(&[
+            ("kind", "init".into()),
+            ("module", module.clone()),
+        ]))?;
+        Ok(Slot {
+            worker,
+            _on_message: on_message,
+            _on_error: on_error,
+        })
+    }
+}
+
+/// A worker's message as the pool's [`FromWorker`].
+fn read_reply(worker: usize, data: &JsValue) -> FromWorker {
+    let kind = field(data, "kind").as_string().unwrap_or_default();
+    let number = |key| field(data, key).as_f64().unwrap_or(-1.0);
+    let values = match field(data, "values") {
+        v if v.is_undefined() => Vec::new(),
+        v => js_sys::Float64Array::new(&v).to_vec(),
+    };
+    let (values, last) = match kind.as_str() {
+        "answer" => (Ok(values), true),
+        "progress" => (Ok(values), false),
+        "error" => (
+            Err(field(data, "error").as_string().unwrap_or_default()),
+            true,
+        ),
+        _ => {
+            let why = field(data, "error").as_string().unwrap_or(kind);
+            return FromWorker::Died { worker, why };
+        }
+    };
+    FromWorker::Reply(Reply {
+        worker,
+        generation: number("generation") as u64,
+        piece: number("piece") as usize,
+        values,
+        json: field(data, "json").as_string(),
+        last,
+    })
+}
+
+/// The fields of a generation's first message.
+fn setup_fields(setup: &Setup) -> Result<Vec<(&'static str, JsValue)>, String> {
+    Ok(match setup {
+        Setup::Grid(grid) => vec![("grid", json(grid)?)],
+        Setup::Diag { grid, k } => vec![("grid", json(grid)?), ("k", JsValue::from_f64(*k))],
+        Setup::Rl(request) => vec![("request", json(request)?)],
+    })
+}
+
+impl Transport for WebTransport {
+    fn what(&self) -> &'static str {
+        "Web Worker"
+    }
+
+    fn workers(&self) -> usize {
+        self.slots.len()
+    }
+
+    fn send(&mut self, worker: usize, msg: ToWorker<'_>) -> Result<(), String> {
+        let slot = self.slots.get(worker).ok_or("no such worker")?;
+        let posted = match msg {
+            ToWorker::Model { id, model } => {
+                let inputs = json(&ModelInputs::of(model))?;
+                slot.worker.post_message(&message(&[
+                    ("kind", "model".into()),
+                    ("model", (id as f64).into()),
+                    ("json", inputs),
+                ]))
+            }
+            ToWorker::Begin {
+                generation,
+                model,
+                setup,
+            } => {
+                let mut pairs = vec![
+                    ("kind", JsValue::from_str(setup.kind())),
+                    ("generation", (generation as f64).into()),
+                    ("model", (model as f64).into()),
+                ];
+                pairs.extend(setup_fields(setup)?);
+                slot.worker.post_message(&message(&pairs))
+            }
+            ToWorker::Piece {
+                generation,
+                kind,
+                piece,
+                payload,
+            } => {
+                let array = js_sys::Uint32Array::from(payload.as_slice());
+                let msg = message(&[
+                    ("kind", kind.into()),
+                    ("generation", (generation as f64).into()),
+                    ("piece", (piece as f64).into()),
+                    ("payload", array.clone().into()),
+                ]);
+                let transfer = js_sys::Array::of1(&array.buffer());
+                slot.worker.post_message_with_transfer(&msg, &transfer)
+            }
+            ToWorker::Forget { generation } => slot.worker.post_message(&message(&[
+                ("kind", "forget".into()),
+                ("generation", (generation as f64).into()),
+            ])),
+        };
+        posted.map_err(|e| format!("{e:?}"))
+    }
+
+    fn receive(&mut self) -> Vec<FromWorker> {
+        std::mem::take(&mut *self.inbox.borrow_mut())
+    }
+
+    fn terminate(&mut self, worker: usize) {
+        if let Some(slot) = self.slots.get(worker) {
+            slot.worker.terminate();
+        }
+    }
+}
