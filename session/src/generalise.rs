@@ -8,6 +8,8 @@ use std::sync::Arc;
 
 use dmpscope_core::{Generalised, Model, Primitive, Scaling, Skill, Target};
 
+use crate::stage::Stage;
+
 /// What is generalised.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum GenSource {
@@ -62,7 +64,7 @@ pub struct GenView {
 
 /// The key the stage was computed for (f64s by their bits).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct GenKey {
+pub(crate) struct GenKey {
     model: u64,
     dm: u64,
     km: u64,
@@ -74,7 +76,7 @@ pub(super) struct GenKey {
 }
 
 impl GenKey {
-    pub(super) fn new(model: u64, (dm, km): (f64, f64), spec: &GeneraliseSpec) -> Self {
+    pub(crate) fn new(model: u64, (dm, km): (f64, f64), spec: &GeneraliseSpec) -> Self {
         let bits = |v: [f64; 3]| v.map(f64::to_bits);
         Self {
             model,
@@ -92,7 +94,7 @@ impl GenKey {
 /// What the primitive depends on: a drag of the goal keeps it and only
 /// rolls it out again.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct PrimitiveKey {
+pub(crate) struct PrimitiveKey {
     model: u64,
     dm: u64,
     km: u64,
@@ -102,7 +104,8 @@ struct PrimitiveKey {
 }
 
 impl GenKey {
-    fn primitive(&self) -> PrimitiveKey {
+    /// What the run's primitive depends on.
+    pub(crate) fn primitive(&self) -> PrimitiveKey {
         PrimitiveKey {
             model: self.model,
             dm: self.dm,
@@ -113,54 +116,36 @@ impl GenKey {
     }
 }
 
-type Fitted = Result<(Arc<Primitive>, Option<Arc<Vec<[f64; 3]>>>), String>;
+/// A primitive and, for a skill, its forcing terms' per-time SD.
+pub(crate) type Fitted = (Arc<Primitive>, Option<Arc<Vec<[f64; 3]>>>);
 
-/// The stage's state.
-pub(super) struct GenState {
-    pub(super) key: GenKey,
-    pub(super) result: Result<GenView, String>,
-    fitted: (PrimitiveKey, Fitted),
-}
-
-impl GenState {
-    /// The run for `key`, reusing `previous`'s primitive when only the
-    /// target changed.
-    pub(super) fn compute(
-        previous: Option<Self>,
-        key: GenKey,
-        model: &Model,
-        (dm, km): (f64, f64),
-        spec: &GeneraliseSpec,
-    ) -> Self {
-        let pkey = key.primitive();
-        let fitted = match previous {
-            Some(p) if p.fitted.0 == pkey => p.fitted.1,
-            _ => fit(model, (dm, km), spec),
-        };
-        let result = match &fitted {
-            Ok((primitive, forcing_sd)) => primitive
-                .rollout(&spec.target)
-                .map(|out| GenView {
-                    primitive: primitive.clone(),
-                    out,
-                    forcing_sd: forcing_sd.clone(),
-                })
-                .map_err(|e| match e {
-                    dmpscope_core::Error::InvalidSetting(m) => m,
-                    other => other.to_string(),
-                }),
-            Err(e) => Err(e.clone()),
-        };
-        Self {
-            key,
-            result,
-            fitted: (pkey, fitted),
-        }
-    }
+/// The run of the stage's primitive at the spec's target.
+pub(crate) fn run(
+    primitive: &Stage<PrimitiveKey, Fitted>,
+    spec: &GeneraliseSpec,
+) -> Result<GenView, String> {
+    let Some((primitive, forcing_sd)) = primitive.value() else {
+        return Err(primitive.error().unwrap_or_default().to_owned());
+    };
+    primitive
+        .rollout(&spec.target)
+        .map(|out| GenView {
+            primitive: primitive.clone(),
+            out,
+            forcing_sd: forcing_sd.clone(),
+        })
+        .map_err(|e| match e {
+            dmpscope_core::Error::InvalidSetting(m) => m,
+            other => other.to_string(),
+        })
 }
 
 /// The demo's primitive, or the skill's with its forcing SD.
-fn fit(model: &Model, (dm, km): (f64, f64), spec: &GeneraliseSpec) -> Fitted {
+pub(crate) fn fit(
+    model: &Model,
+    (dm, km): (f64, f64),
+    spec: &GeneraliseSpec,
+) -> Result<Fitted, String> {
     match spec.source {
         GenSource::Demo(i) => Ok((
             Arc::new(Primitive::of_demo(model, i, dm, km).map_err(|e| e.to_string())?),

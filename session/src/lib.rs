@@ -42,6 +42,7 @@ pub mod rl;
 pub mod rl_board;
 pub mod settings;
 pub mod sources;
+pub mod stage;
 mod stages;
 mod status;
 pub mod tiles;
@@ -70,11 +71,13 @@ pub use settings::Settings;
 pub use sources::Source;
 pub use status::Status;
 
+use generalise::{GenKey, Fitted, PrimitiveKey};
 use messages::Messages;
 use sources::SourceSlot;
+use stage::Stage;
 use stages::{
-    ConstrainedState, DiagState, ExtractionState, LandscapeState, ModelState, PointState,
-    PresetState, RlState,
+    Built, ConstrainedKey, DiagKey, ExtractionKey, LandscapeKey, ModelKey, PointKey, PointValue,
+    RlKey,
 };
 
 /// A demo in the demos list.
@@ -125,19 +128,26 @@ pub struct Session {
     /// reloads and regroupings).
     excluded: BTreeSet<(usize, String)>,
     messages: Messages,
-    model: Option<ModelState>,
-    landscape: Option<LandscapeState>,
-    extraction: Option<ExtractionState>,
-    diagnostics: Option<DiagState>,
-    constrained: Option<ConstrainedState>,
-    presets: Option<PresetState>,
+    model: Stage<ModelKey, Built>,
+    landscape: Stage<LandscapeKey, Snapshot>,
+    /// The landscape's latest snapshot as the heat maps show it.
+    shown: Option<Shown>,
+    extraction: Stage<ExtractionKey, dmpscope_core::Result<Extraction>>,
+    diagnostics: Stage<DiagKey, DiagSnapshot>,
+    /// `Some(None)`: no gains within the a_peak limit.
+    constrained: Stage<ConstrainedKey, Option<Refined>>,
+    /// The paper's gains evaluated, per model version.
+    presets: Stage<u64, Vec<(String, PointEval)>>,
     /// The k of the last update (Table I's rows are made for it).
     k: f64,
-    point: Option<PointState>,
+    point: Stage<PointKey, PointValue>,
     /// The user's generalisation, if on.
     generalise: Option<GeneraliseSpec>,
-    generalised: Option<generalise::GenState>,
-    rl: Option<RlState>,
+    /// Its primitive (kept while only the target moves) and its run.
+    primitive: Stage<PrimitiveKey, Fitted>,
+    generalised: Stage<GenKey, GenView>,
+    rl: Stage<RlKey, RlProgress>,
+    rl_request: Option<RlRequest>,
     runs: StageRuns,
     counter: u64,
 }
@@ -152,17 +162,20 @@ impl Session {
             demos_version: 0,
             excluded: BTreeSet::new(),
             messages: Messages::default(),
-            model: None,
-            landscape: None,
-            extraction: None,
-            diagnostics: None,
-            constrained: None,
-            presets: None,
+            model: Stage::default(),
+            landscape: Stage::default(),
+            shown: None,
+            extraction: Stage::default(),
+            diagnostics: Stage::default(),
+            constrained: Stage::default(),
+            presets: Stage::default(),
             k: dmpscope_core::DEFAULT_K,
-            point: None,
+            point: Stage::default(),
             generalise: None,
-            generalised: None,
-            rl: None,
+            primitive: Stage::default(),
+            generalised: Stage::default(),
+            rl: Stage::default(),
+            rl_request: None,
             runs: StageRuns::default(),
             counter: 0,
         }
@@ -213,22 +226,19 @@ impl Session {
                 }
             }
             Command::CancelLandscape => {
-                if let Some(l) = &mut self.landscape
-                    && let Some(mut job) = l.job.take()
-                {
-                    job.cancel();
-                    l.cancelled = true;
-                }
+                self.landscape.cancel();
             }
-            Command::RestartLandscape => self.landscape = None,
+            Command::RestartLandscape => {
+                self.landscape.clear();
+                self.shown = None;
+            }
             Command::StartRl(request) => self.start_rl(request),
             Command::CancelRl => {
-                if let Some(rl) = &mut self.rl
-                    && let Some(mut job) = rl.job.take()
+                if self.rl.cancel()
+                    && let Some(progress) = self.rl.value_mut()
                 {
-                    job.cancel();
-                    rl.progress.done = true;
-                    rl.progress.cancelled = true;
+                    progress.done = true;
+                    progress.cancelled = true;
                 }
             }
             Command::SetGeneralise(spec) => self.generalise = spec,
@@ -259,25 +269,23 @@ impl Session {
     }
 
     /// The generalisation: recomputed when the model, the operating point
-    /// or the target changes.
+    /// or the target changes; its primitive only when the model, the point
+    /// or the source changes (a goal drag rolls the same primitive out).
     fn update_generalised(&mut self, settings: &Settings) {
         let (Some(spec), Some((model, version))) = (self.generalise, self.model_and_version())
         else {
-            self.generalised = None;
+            self.generalised.clear();
+            self.primitive.clear();
             return;
         };
-        let key = generalise::GenKey::new(version, settings.op, &spec);
-        if self.generalised.as_ref().is_none_or(|g| g.key != key) {
-            self.runs.generalised += 1;
-            let previous = self.generalised.take();
-            self.generalised = Some(generalise::GenState::compute(
-                previous,
-                key,
-                &model,
-                settings.op,
-                &spec,
-            ));
-        }
+        let key = GenKey::new(version, settings.op, &spec);
+        self.primitive
+            .ensure_now(key.primitive(), || generalise::fit(&model, settings.op, &spec));
+        let primitive = &self.primitive;
+        let computed = self
+            .generalised
+            .ensure_now(key, || generalise::run(primitive, &spec));
+        self.runs.generalised += usize::from(computed);
     }
 
     /// The generalisation asked for (`None`: off).
@@ -287,9 +295,9 @@ impl Session {
 
     /// The generalised run at the operating point, or why there is none.
     pub fn generalised(&self) -> Option<Result<&GenView, &str>> {
-        self.generalised
-            .as_ref()
-            .map(|g| g.result.as_ref().map_err(String::as_str))
+        let g = &self.generalised;
+        g.key()
+            .map(|_| g.value().ok_or_else(|| g.error().unwrap_or_default()))
     }
 
     /// The recordings opened, in order.
@@ -320,7 +328,7 @@ impl Session {
 
     /// The model, when one could be built.
     pub fn model(&self) -> Option<&Arc<Model>> {
-        self.model.as_ref().and_then(|m| m.built.as_ref().ok())
+        self.model.value().map(|b| &b.model)
     }
 
     /// Identifies the current model: changes whenever a new one is built.
@@ -330,17 +338,17 @@ impl Session {
 
     /// For each model demo, its index in [`Session::demos`].
     pub fn model_demos(&self) -> &[usize] {
-        self.model.as_ref().map_or(&[], |m| m.used.as_slice())
+        self.model.value().map_or(&[], |b| b.used.as_slice())
     }
 
     /// The landscape as the heat maps show it.
     pub fn shown(&self) -> Option<&Shown> {
-        self.landscape.as_ref().and_then(|l| l.shown.as_ref())
+        self.shown.as_ref()
     }
 
     /// Whether the landscape is being computed.
     pub fn landscape_running(&self) -> bool {
-        self.landscape.as_ref().is_some_and(|l| l.job.is_some())
+        self.landscape.running()
     }
 
     /// Whether the landscape is complete.
@@ -350,47 +358,45 @@ impl Session {
 
     /// The extracted gains for the current k, once known.
     pub fn extraction(&self) -> Option<&Extraction> {
-        self.extraction.as_ref().and_then(|x| x.result.as_ref())
+        stages::found(self.extraction.value())
     }
 
     /// Whether the optimum is being extracted.
     pub fn extracting(&self) -> bool {
-        self.extraction.as_ref().is_some_and(|x| x.job.is_some())
+        self.extraction.running()
     }
 
     /// The diagnostics of the extraction so far (`None` until it is known).
     pub fn diagnostics(&self) -> Option<&DiagSnapshot> {
-        self.diagnostics.as_ref().and_then(|d| d.snapshot.as_ref())
+        self.diagnostics.value()
     }
 
     /// Whether the diagnostics are being computed.
     pub fn diagnosing(&self) -> bool {
-        self.diagnostics.as_ref().is_some_and(|d| d.job.is_some())
+        self.diagnostics.running()
     }
 
     /// The optimum under the a_peak limit: `None` without a limit or until
     /// computed, `Some(None)` when no gains are within it.
     pub fn constrained(&self) -> Option<Option<&Refined>> {
-        self.constrained
-            .as_ref()
-            .and_then(|c| c.result.as_ref().map(Option::as_ref))
+        stages::within(self.constrained.value())
     }
 
     /// The operating point's evaluation (its gains, d, a_peak, S).
     pub fn point(&self) -> Option<&PointEval> {
-        self.point.as_ref().map(|p| &p.eval)
+        self.point.value().map(|p| &p.eval)
     }
 
     /// Every demo's standardised forcing term and sigma_f at the operating
     /// point.
     pub fn forcing_terms(&self) -> Option<&Standardised> {
-        self.point.as_ref().map(|p| &p.standardised)
+        self.point.value().map(|p| &p.standardised)
     }
 
     /// Each model demo's share of S at the operating point (`None` with
     /// one demo).
     pub fn point_shares(&self) -> Option<&[f64]> {
-        self.point.as_ref().and_then(|p| p.shares.as_deref())
+        self.point.value().and_then(|p| p.shares.as_deref())
     }
 
     /// Table I for the k of the last update: extracted (when known), the
@@ -402,16 +408,16 @@ impl Session {
             .map(|x| TableRow::from_eval("Extracted", &x.eval, x.k))
             .into_iter()
             .collect();
-        if let Some(p) = &self.presets {
+        if let Some(evals) = self.presets.value() {
             rows.extend(
-                p.evals
+                evals
                     .iter()
                     .map(|(n, e)| TableRow::from_eval(n.clone(), e, k)),
             );
         }
         rows.extend(
             self.point
-                .as_ref()
+                .value()
                 .map(|p| TableRow::from_eval("Operating point", &p.eval, k)),
         );
         rows
@@ -428,10 +434,8 @@ impl Session {
             Some(d) => report.with_diagnostics(d.diagnostics.clone(), d.about.clone()),
             None => report,
         };
-        if let Some(c) = &self.constrained
-            && let Some(found) = &c.result
-        {
-            let limit = f64::from_bits(c.key.limit);
+        if let (Some(key), Some(found)) = (self.constrained.key(), self.constrained.value()) {
+            let limit = f64::from_bits(key.limit);
             report.constrained = Some(Constrained::from_refined(model, limit, found.as_ref()));
         }
         Some(report)
@@ -439,17 +443,17 @@ impl Session {
 
     /// Why the extraction failed, if it did.
     pub fn extraction_error(&self) -> Option<&str> {
-        self.extraction.as_ref().and_then(|x| x.error.as_deref())
+        self.extraction.error()
     }
 
     /// Every model demo regenerated at the operating point.
     pub fn paths(&self) -> &[Rollout] {
-        self.point.as_ref().map_or(&[], |p| p.paths.as_slice())
+        self.point.value().map_or(&[], |p| p.paths.as_slice())
     }
 
     /// The RL run, if one was started: what it trains and how far it is.
     pub fn rl(&self) -> Option<(&RlRequest, &RlProgress)> {
-        self.rl.as_ref().map(|r| (&r.request, &r.progress))
+        self.rl_request.as_ref().zip(self.rl.value())
     }
 
     /// How many times each stage was computed.
@@ -463,7 +467,7 @@ impl Session {
             || self.landscape_running()
             || self.extracting()
             || self.diagnosing()
-            || self.rl.as_ref().is_some_and(|r| r.job.is_some())
+            || self.rl.running()
     }
 
     /// What the executor's pool of workers has done (zeros without one).
@@ -474,19 +478,13 @@ impl Session {
     /// Work done on the caller's thread by the landscape (the browser's
     /// page thread).
     pub fn landscape_page_time(&self) -> PageTime {
-        self.landscape
-            .as_ref()
-            .map(|l| l.page_time)
-            .unwrap_or_default()
+        self.landscape.page_time()
     }
 
     /// Work done on the caller's thread by the diagnostics (the browser's
     /// page thread).
     pub fn diagnostics_page_time(&self) -> PageTime {
-        self.diagnostics
-            .as_ref()
-            .map(|d| d.page_time)
-            .unwrap_or_default()
+        self.diagnostics.page_time()
     }
 
     /// What the window should say where the landscape goes.
@@ -495,17 +493,14 @@ impl Session {
     }
 
     fn landscape_cancelled(&self) -> bool {
-        self.landscape.as_ref().is_some_and(|l| l.cancelled)
+        self.landscape.cancelled()
     }
 
     fn landscape_failed(&self) -> bool {
-        self.landscape.as_ref().is_some_and(|l| l.failed)
+        self.landscape.died()
     }
 
     fn model_error(&self) -> Option<&str> {
-        self.model
-            .as_ref()
-            .and_then(|m| m.built.as_ref().err())
-            .map(String::as_str)
+        self.model.error()
     }
 }

@@ -11,7 +11,8 @@ use dmpscope_core::arrange::{Arrangement, Overrides, StreamInfo, arrange};
 use dmpscope_core::io::{LoadOptions, SourceData, SourceDemos, UpAxis, load_streams};
 use dmpscope_core::{Level, Notice, RawDemo};
 
-use super::jobs::{Job, Once, Runner, Update};
+use crate::jobs::{Once, Runner};
+use crate::stage::{Polled, Stage};
 
 /// The bundled samples' bytes, shared by every source made of them.
 static REACH10: LazyLock<Arc<[u8]>> =
@@ -141,9 +142,10 @@ pub struct SourceSlot {
     /// The recording.
     pub source: Source,
     streams: Option<Streams>,
-    pending: Option<(StreamKey, Job<Result<SourceDemos, String>>)>,
+    /// The load under way (its value is moved to `streams` when done).
+    load: Stage<StreamKey, Result<SourceDemos, String>>,
     /// The demos of the streams for an arrangement, and those.
-    grouped: Option<(Regrouping, Result<Vec<RawDemo>, String>)>,
+    grouped: Stage<Regrouping, Vec<RawDemo>>,
     /// Every stream and what became of it, for the arrangement.
     streams_info: Vec<StreamInfo>,
     /// The user's choice per stream (topic), over the filter.
@@ -169,8 +171,8 @@ impl SourceSlot {
         Self {
             source,
             streams: None,
-            pending: None,
-            grouped: None,
+            load: Stage::default(),
+            grouped: Stage::default(),
             streams_info: Vec::new(),
             overrides: Overrides::new(),
         }
@@ -214,16 +216,13 @@ impl SourceSlot {
 
     /// Whether the slot is being (re)loaded.
     pub fn loading(&self) -> bool {
-        self.pending.is_some()
+        self.load.running()
     }
 
     /// The demos the slot gives now (none while it first loads or when it
     /// failed).
     pub fn demos(&self) -> &[RawDemo] {
-        match &self.grouped {
-            Some((_, Ok(d))) => d,
-            _ => &[],
-        }
+        self.grouped.value().map_or(&[], Vec::as_slice)
     }
 
     /// Brings the slot to `options`: starts a load when the stream options
@@ -233,78 +232,67 @@ impl SourceSlot {
         let mut news = SlotNews::default();
         let key = StreamKey::of(options);
         let current = self.streams.as_ref().is_some_and(|s| s.key == key);
-        let pending_for_key = self.pending.as_ref().is_some_and(|(k, _)| *k == key);
-        if current && self.pending.is_some() {
+        if current && self.load.running() {
             // Back to the options the streams were read with: a load for
             // other options is stale (dropping it cancels it).
-            self.pending = None;
+            self.load.clear();
         }
-        if !current && !pending_for_key {
-            let (source, load_options) = (self.source.clone(), key.options());
-            let work = Once::new(move || source.load(&load_options));
-            let mut job = runner.start("loading", work);
-            if let Some(n) = job.take_notice() {
+        let source = &self.source;
+        if !current
+            && self.load.ensure_job(key.clone(), || {
+                let (source, load_options) = (source.clone(), key.options());
+                let work = Once::new(move || source.load(&load_options));
+                Ok(runner.start("loading", work))
+            })
+        {
+            if let Some(n) = self.load.take_notice() {
                 news.notices.push(Notice::warning(n));
             }
-            self.pending = Some((key, job));
             news.loads_started += 1;
         }
-        if let Some((key, job)) = &mut self.pending {
-            let finished = match job.poll() {
-                Some(Update::Done(result)) => Some(result),
-                Some(Update::Failed(e)) => Some(Err(format!("{}: {e}", self.source.name()))),
-                Some(Update::Progress(_)) | None => None,
-            };
-            if let Some(result) = finished {
-                match &result {
-                    Ok(loaded) => news.notices.extend(
-                        loaded
-                            .notices
-                            .iter()
-                            .filter(|n| n.level != Level::Detail)
-                            .cloned(),
-                    ),
-                    Err(e) => news.notices.push(Notice::error(e.clone())),
-                }
-                self.streams = Some(Streams {
-                    key: key.clone(),
-                    result,
-                });
-                self.pending = None;
-                self.grouped = None;
+        let finished = match self.load.poll() {
+            Polled::Value => self.load.take_value(),
+            Polled::Failed(e) => Some(Err(format!("{}: {e}", self.source.name()))),
+            Polled::Nothing => None,
+        };
+        if let (Some(result), Some(key)) = (finished, self.load.key().cloned()) {
+            match &result {
+                Ok(loaded) => news.notices.extend(
+                    loaded
+                        .notices
+                        .iter()
+                        .filter(|n| n.level != Level::Detail)
+                        .cloned(),
+                ),
+                Err(e) => news.notices.push(Notice::error(e.clone())),
             }
+            self.streams = Some(Streams { key, result });
+            self.grouped.clear();
         }
         let Some(streams) = &self.streams else {
             return news;
         };
         let how = (Arrangement::of(options), self.overrides.clone());
-        if self.grouped.as_ref().is_none_or(|(g, _)| *g != how) {
-            let demos = match &streams.result {
-                Ok(loaded) => match arrange(loaded.demos.clone(), &how.0, &how.1) {
-                    Ok(arranged) => {
-                        news.notices.extend(arranged.notices);
-                        self.streams_info = arranged.streams;
-                        Ok(arranged.demos)
-                    }
-                    Err(e) => Err(e.to_string()),
-                },
-                Err(e) => Err(e.clone()),
-            };
-            match (&demos, &streams.result) {
-                (Err(e), Ok(_)) => news.notices.push(Notice::error(e.clone())),
-                (Ok(d), Ok(loaded)) if d.is_empty() && !loaded.demos.is_empty() => {
-                    news.notices.push(Notice::warning(format!(
-                        "{}: segmentation found no movement between rests (lower the rest speed \
-                         or the shortest demo in Loading)",
-                        self.source.name()
-                    )));
-                }
-                _ => {}
+        let (source, info, notices) = (&self.source, &mut self.streams_info, &mut news.notices);
+        let regrouped = self.grouped.ensure_now(how.clone(), || {
+            let loaded = streams.result.as_ref()?;
+            let arranged = arrange(loaded.demos.clone(), &how.0, &how.1).map_err(|e| {
+                notices.push(Notice::error(e.to_string()));
+                e.to_string()
+            })?;
+            notices.extend(arranged.notices);
+            *info = arranged.streams;
+            if arranged.demos.is_empty() && !loaded.demos.is_empty() {
+                notices.push(Notice::warning(format!(
+                    "{}: segmentation found no movement between rests (lower the rest speed \
+                     or the shortest demo in Loading)",
+                    source.name()
+                )));
             }
-            self.grouped = Some((how, demos));
-            news.demos_changed = true;
-            news.regrouped = true;
-        }
+            Ok(arranged.demos)
+        });
+        news.demos_changed |= regrouped;
+        news.regrouped |= regrouped;
         news
     }
 }
