@@ -61,7 +61,7 @@ fn landscape_json_has_exactly_the_documented_shape() {
     assert_eq!(
         sorted_keys(&doc),
         [
-            "d_sum", "demos", "dm", "j", "k", "km", "optimum", "s", "table"
+            "a_peak", "d_sum", "demos", "dm", "j", "k", "km", "optimum", "s", "table"
         ]
     );
     let n = 12;

@@ -211,7 +211,7 @@ pub fn constrained(model: &Model, landscape: &Landscape, k: f64, limit: f64) -> 
     let masked: Vec<f64> = landscape
         .j(k)
         .iter()
-        .zip(&landscape.a_peak)
+        .zip(landscape.a_peak())
         .map(|(&j, &a)| if a <= limit { j } else { f64::NAN })
         .collect();
     refine(landscape, &masked, |dm, km| {

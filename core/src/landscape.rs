@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::model::{LANES, Model};
+use crate::quantity::{self, PointValues, Quantity};
 
 /// How an axis spaces its values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -162,23 +163,40 @@ pub struct Landscape {
     pub dm: Vec<f64>,
     /// The K/M values.
     pub km: Vec<f64>,
-    /// `sum d` per grid point (NaN where not computed yet).
-    pub d_sum: Vec<f64>,
-    /// `S` per grid point (NaN where not computed yet).
-    pub s: Vec<f64>,
-    /// The largest `a_peak` of any demo per grid point (NaN where not
-    /// computed yet), m/s^2 of the unit-time motion.
-    pub a_peak: Vec<f64>,
+    /// Each quantity of [`quantity::ALL`] per grid point (NaN where not
+    /// computed yet), in the table's order.
+    pub values: [Vec<f64>; quantity::COUNT],
     /// How many points are computed.
     pub filled: usize,
 }
 
 impl Landscape {
-    /// `[sum d, S, max a_peak]` of `points` (`(i_dm, i_km)` of this grid)
+    /// The grid of quantity `q`.
+    pub fn values(&self, q: Quantity) -> &[f64] {
+        &self.values[q.index()]
+    }
+
+    /// `sum d` per grid point.
+    pub fn d_sum(&self) -> &[f64] {
+        self.values(Quantity::DSum)
+    }
+
+    /// `S` per grid point.
+    pub fn s(&self) -> &[f64] {
+        self.values(Quantity::S)
+    }
+
+    /// The largest `a_peak` of any demo per grid point, m/s^2 of the
+    /// unit-time motion.
+    pub fn a_peak(&self) -> &[f64] {
+        self.values(Quantity::APeak)
+    }
+
+    /// Every quantity's values of `points` (`(i_dm, i_km)` of this grid)
     /// on this thread, without storing them: what a worker computes for a
     /// tile. Each point's numbers are the same bits whatever tile or order
     /// it is computed in (the kernels' lanes are independent).
-    pub fn evaluate(&self, model: &Model, points: &[(u32, u32)]) -> Result<Vec<[f64; 3]>> {
+    pub fn evaluate(&self, model: &Model, points: &[(u32, u32)]) -> Result<Vec<PointValues>> {
         self.check(points)?;
         Ok(eval_points(model, self, points))
     }
@@ -186,7 +204,7 @@ impl Landscape {
     /// Stores the numbers of `points` computed elsewhere
     /// ([`Landscape::evaluate`]); each point once (`filled` counts every
     /// point stored, so the caller refuses a point answered twice).
-    pub fn store(&mut self, points: &[(u32, u32)], values: &[[f64; 3]]) -> Result<()> {
+    pub fn store(&mut self, points: &[(u32, u32)], values: &[PointValues]) -> Result<()> {
         if points.len() != values.len() {
             return Err(Error::InvalidSetting(format!(
                 "{} points but {} values",
@@ -217,9 +235,7 @@ impl Landscape {
             grid,
             dm: grid.dm.values(),
             km: grid.km.values(),
-            d_sum: vec![f64::NAN; len],
-            s: vec![f64::NAN; len],
-            a_peak: vec![f64::NAN; len],
+            values: std::array::from_fn(|_| vec![f64::NAN; len]),
             filled: 0,
         }
     }
@@ -236,9 +252,9 @@ impl Landscape {
 
     /// `J = S + k sum d` at every point (recombination, no integration).
     pub fn j(&self, k: f64) -> Vec<f64> {
-        self.s
+        self.s()
             .iter()
-            .zip(&self.d_sum)
+            .zip(self.d_sum())
             .map(|(s, d)| s + k * d)
             .collect()
     }
@@ -386,9 +402,9 @@ impl LandscapeJob {
     }
 }
 
-/// `[sum d, S, max a_peak]` of a tile of points, spread over all cores.
+/// Every quantity of a tile of points, spread over all cores.
 #[cfg(feature = "parallel")]
-fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<[f64; 3]> {
+fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<PointValues> {
     use rayon::prelude::*;
     row_runs(batch)
         .par_iter()
@@ -396,9 +412,9 @@ fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<
         .collect()
 }
 
-/// `[sum d, S, max a_peak]` of a tile of points on this thread.
+/// Every quantity of a tile of points on this thread.
 #[cfg(not(feature = "parallel"))]
-fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<[f64; 3]> {
+fn eval_tile(model: &Model, landscape: &Landscape, batch: &[(u32, u32)]) -> Vec<PointValues> {
     eval_points(model, landscape, batch)
 }
 
@@ -415,9 +431,8 @@ fn row_runs(points: &[(u32, u32)]) -> Vec<&[(u32, u32)]> {
     runs
 }
 
-/// `[sum d, S, max a_peak]` of each point, in lanes of points that share a
-/// row.
-fn eval_points(model: &Model, landscape: &Landscape, points: &[(u32, u32)]) -> Vec<[f64; 3]> {
+/// Every quantity of each point, in lanes of points that share a row.
+fn eval_points(model: &Model, landscape: &Landscape, points: &[(u32, u32)]) -> Vec<PointValues> {
     let mut out = Vec::with_capacity(points.len());
     for run in row_runs(points) {
         let dm = landscape.dm[run[0].0 as usize];
@@ -431,12 +446,12 @@ fn eval_points(model: &Model, landscape: &Landscape, points: &[(u32, u32)]) -> V
     out
 }
 
-fn store(landscape: &mut Landscape, points: &[(u32, u32)], values: &[[f64; 3]]) {
-    for (&(i, j), &[d, s, a]) in points.iter().zip(values) {
+fn store(landscape: &mut Landscape, points: &[(u32, u32)], values: &[PointValues]) {
+    for (&(i, j), point) in points.iter().zip(values) {
         let idx = landscape.index(i as usize, j as usize);
-        landscape.d_sum[idx] = d;
-        landscape.s[idx] = s;
-        landscape.a_peak[idx] = a;
+        for (grid, &v) in landscape.values.iter_mut().zip(point) {
+            grid[idx] = v;
+        }
     }
     landscape.filled += points.len();
 }

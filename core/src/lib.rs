@@ -42,6 +42,7 @@ pub mod pipeline;
 pub mod planted;
 pub mod prepare;
 pub mod presets;
+pub mod quantity;
 pub mod report;
 pub mod rl;
 pub mod savgol;
@@ -62,6 +63,7 @@ pub use notice::{Level, Notice};
 pub use pipeline::{Built, Unusable, build_model};
 pub use prepare::{PrepSettings, PreparedDemo, prepare};
 pub use presets::{PAPER_PRESETS, Preset};
+pub use quantity::{PointValues, Quantity};
 pub use report::{Report, TableRow};
 pub use skill::Skill;
 

@@ -13,6 +13,7 @@ use serde::Serialize;
 use crate::dmp::{Basis, DmpSettings, Projections};
 use crate::error::{Error, Result};
 use crate::prepare::PreparedDemo;
+use crate::quantity::{self, PointValues, Quantity};
 use crate::similarity::{Similarity, trapezoid};
 
 /// Lanes of the batched kernels used by landscapes (gain pairs sharing D/M).
@@ -203,11 +204,11 @@ impl Model {
         }
     }
 
-    /// `[sum d, S, max a_peak]` at the gain pairs `(dm, km[l])`; the
-    /// landscape's unit of work. Each lane's numbers equal
+    /// Every quantity of the table ([`crate::quantity`]) at the gain pairs
+    /// `(dm, km[l])`; the landscape's unit of work. Each lane's numbers equal
     /// [`Model::evaluate`]'s to the bit (`max a_peak` is the largest of its
     /// per-demo `a_peak`).
-    pub fn evaluate_lanes<const L: usize>(&self, dm: f64, km: [f64; L]) -> [[f64; 3]; L] {
+    pub fn evaluate_lanes<const L: usize>(&self, dm: f64, km: [f64; L]) -> [PointValues; L] {
         let mut d_sum = [0.0; L];
         let mut peak = [0.0f64; L];
         for i in 0..self.demos.len() {
@@ -218,7 +219,13 @@ impl Model {
             }
         }
         let s = self.similarity.evaluate_lanes(dm, km);
-        std::array::from_fn(|l| [d_sum[l], s[l], peak[l]])
+        std::array::from_fn(|l| {
+            let mut point = [0.0; quantity::COUNT];
+            point[Quantity::DSum.index()] = d_sum[l];
+            point[Quantity::S.index()] = s[l];
+            point[Quantity::APeak.index()] = peak[l];
+            point
+        })
     }
 
     /// `J = S + k sum d` at one gain pair, the same bits as

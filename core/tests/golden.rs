@@ -142,12 +142,12 @@ fn landscape_and_optimum_match_reference() {
             let idx = land.index(i, jj);
             let at = format!("[{i}][{jj}]");
             close(
-                land.d_sum[idx],
+                land.d_sum()[idx],
                 f(&ls["d_sum"][i][jj]),
                 REL,
                 &format!("d_sum {at}"),
             );
-            close(land.s[idx], f(&ls["s"][i][jj]), REL, &format!("S {at}"));
+            close(land.s()[idx], f(&ls["s"][i][jj]), REL, &format!("S {at}"));
             close(j[idx], f(&ls["j"][i][jj]), REL, &format!("J {at}"));
         }
     }

@@ -376,7 +376,7 @@ fn recombined_j_equals_direct_evaluation_bit_for_bit() {
         for (jj, &km) in land.km.iter().enumerate() {
             let idx = land.index(i, jj);
             let e = m.evaluate(dm, km);
-            let ours = (land.d_sum[idx].to_bits(), land.s[idx].to_bits());
+            let ours = (land.d_sum()[idx].to_bits(), land.s()[idx].to_bits());
             assert_eq!(ours, (e.d_sum.to_bits(), e.s.to_bits()), "[{i}][{jj}]");
             for (kk, &k) in ks.iter().enumerate() {
                 assert_eq!(js[kk][idx], e.j(k), "J(k = {k}) at [{i}][{jj}]");
@@ -411,16 +411,16 @@ fn landscape_fill_paths_are_bit_identical() {
     assert!(reference.is_complete());
     assert!(
         reference
-            .d_sum
+            .d_sum()
             .iter()
-            .chain(&reference.s)
+            .chain(reference.s())
             .all(|v| v.is_finite())
     );
     for (name, other) in [("coarse-to-fine", c2f), ("run", parallel), ("mixed", mixed)] {
         let l = other.into_landscape();
         assert!(l.is_complete(), "{name}");
-        assert_eq!(bits(&l.d_sum), bits(&reference.d_sum), "sum d, {name}");
-        assert_eq!(bits(&l.s), bits(&reference.s), "S, {name}");
+        assert_eq!(bits(l.d_sum()), bits(reference.d_sum()), "sum d, {name}");
+        assert_eq!(bits(l.s()), bits(reference.s()), "S, {name}");
     }
 }
 
@@ -439,8 +439,8 @@ fn landscape_cancellation_and_partial_previews() {
         let mut job = LandscapeJob::new(m.clone(), grid, order).expect("job");
         job.step(7);
         let l = job.landscape();
-        assert!(!l.is_complete() && l.d_sum.iter().any(|v| v.is_nan()));
-        for values in [&l.d_sum, &l.s] {
+        assert!(!l.is_complete() && l.d_sum().iter().any(|v| v.is_nan()));
+        for values in [l.d_sum(), l.s()] {
             assert!(l.preview(values).iter().all(|v| !v.is_nan()), "{order:?}");
         }
     }
@@ -456,13 +456,13 @@ fn landscape_cancellation_and_partial_previews() {
     assert!(done > 0 && done < total, "{done} of {total}");
     let partial = job.landscape();
     assert_eq!(partial.filled, done);
-    for values in [&partial.d_sum, &partial.s] {
+    for values in [partial.d_sum(), partial.s()] {
         assert!(partial.preview(values).iter().all(|v| !v.is_nan()));
     }
     let full = compute(&m, big);
-    for (idx, (d, s)) in partial.d_sum.iter().zip(&partial.s).enumerate() {
+    for (idx, (d, s)) in partial.d_sum().iter().zip(partial.s()).enumerate() {
         if !d.is_nan() {
-            assert_eq!(bits(&[*d, *s]), bits(&[full.d_sum[idx], full.s[idx]]));
+            assert_eq!(bits(&[*d, *s]), bits(&[full.d_sum()[idx], full.s()[idx]]));
         }
     }
 }

@@ -78,9 +78,7 @@ pub trait Executor: Send + Sync {
     /// What the user should be told about the executor since the last
     /// call (a worker that failed, none that started).
     fn take_notices(&self) -> Vec<String> {
-        self.workers()
-            .map(|w| w.take_notices())
-            .unwrap_or_default()
+        self.workers().map(|w| w.take_notices()).unwrap_or_default()
     }
     /// The pool's figures (zeros without one).
     fn worker_stats(&self) -> WorkerStats {

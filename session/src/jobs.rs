@@ -196,11 +196,7 @@ impl<W: Work> Task for Wrapped<W> {
         }
         slot.latest = Some(value);
         slot.done = done;
-        if done {
-            TaskStep::Done
-        } else {
-            TaskStep::News
-        }
+        if done { TaskStep::Done } else { TaskStep::News }
     }
 }
 

@@ -8,6 +8,7 @@ use std::sync::Arc;
 use dmpscope_core::landscape::{FillOrder, Grid, Landscape, LandscapeJob};
 use std::time::Duration;
 
+use dmpscope_core::quantity::{self, Quantity};
 use dmpscope_core::{Model, Result};
 
 use crate::jobs::{Clock, Runner, Step, Work};
@@ -158,14 +159,11 @@ impl Work for LandscapeWork {
 pub struct Shown {
     /// The snapshot.
     pub snapshot: Snapshot,
-    /// sum d with missing points filled from coarser ones.
-    pub d_sum: Vec<f64>,
-    /// S, filled likewise.
-    pub s: Vec<f64>,
+    /// Each quantity of the table with missing points filled from coarser
+    /// ones.
+    pub previews: [Vec<f64>; quantity::COUNT],
     /// J for [`Shown::k`], filled likewise.
     pub j: Vec<f64>,
-    /// The largest a_peak of any demo, filled likewise.
-    pub a_peak: Vec<f64>,
     /// The k of `j`.
     pub k: f64,
     /// Changes with every snapshot shown (with `k`, keys the heat maps'
@@ -178,10 +176,8 @@ impl Shown {
     pub fn new(snapshot: Snapshot, k: f64, version: u64) -> Self {
         let l = &snapshot.landscape;
         Self {
-            d_sum: l.preview(&l.d_sum),
-            s: l.preview(&l.s),
+            previews: std::array::from_fn(|q| l.preview(&l.values[q])),
             j: l.preview(&l.j(k)),
-            a_peak: l.preview(&l.a_peak),
             k,
             snapshot,
             version,
@@ -193,6 +189,11 @@ impl Shown {
         let l = &self.snapshot.landscape;
         self.j = l.preview(&l.j(k));
         self.k = k;
+    }
+
+    /// The preview of quantity `q`.
+    pub fn values(&self, q: Quantity) -> &[f64] {
+        &self.previews[q.index()]
     }
 
     /// The grid.

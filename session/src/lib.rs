@@ -61,17 +61,17 @@ use dmpscope_core::{
 
 pub use commands::Command;
 pub use diagnostics::DiagSnapshot;
-pub use generalise::{GenSource, GenView, GeneraliseSpec};
 pub use executor::{Executor, PageTime};
+pub use generalise::{GenSource, GenView, GeneraliseSpec};
 pub use jobs::Runner;
-pub use workers::WorkerStats;
 pub use landscape::{Shown, Snapshot};
 pub use rl::{Progress as RlProgress, RlRequest, RlRun};
 pub use settings::Settings;
 pub use sources::Source;
 pub use status::Status;
+pub use workers::WorkerStats;
 
-use generalise::{GenKey, Fitted, PrimitiveKey};
+use generalise::{Fitted, GenKey, PrimitiveKey};
 use messages::Messages;
 use sources::SourceSlot;
 use stage::Stage;
@@ -279,8 +279,9 @@ impl Session {
             return;
         };
         let key = GenKey::new(version, settings.op, &spec);
-        self.primitive
-            .ensure_now(key.primitive(), || generalise::fit(&model, settings.op, &spec));
+        self.primitive.ensure_now(key.primitive(), || {
+            generalise::fit(&model, settings.op, &spec)
+        });
         let primitive = &self.primitive;
         let computed = self
             .generalised

@@ -260,7 +260,10 @@ impl Session {
     /// The diagnostics of the current extraction, recomputed when it or the
     /// diagnostics' settings change (gone while k is dragged).
     pub(crate) fn update_diagnostics(&mut self, settings: &Settings) {
-        let ready = self.extraction().cloned().zip(self.extraction.key().copied());
+        let ready = self
+            .extraction()
+            .cloned()
+            .zip(self.extraction.key().copied());
         let (Some((found, extraction)), Some((model, _)), Some(shown)) =
             (ready, self.model_and_version(), &self.shown)
         else {
@@ -274,8 +277,7 @@ impl Session {
         let landscape = shown.snapshot.landscape.clone();
         let runner = &self.runner;
         if self.diagnostics.ensure_job(key, || {
-            let work =
-                DiagnosticsWork::new(model, landscape, found, settings.diagnostics, runner);
+            let work = DiagnosticsWork::new(model, landscape, found, settings.diagnostics, runner);
             Ok(runner.start("the diagnostics", work))
         }) {
             self.runs.diagnostics += 1;
@@ -370,7 +372,11 @@ impl Session {
         }
         match self.rl.poll() {
             Polled::Value => {
-                if let Some(why) = self.rl.value().filter(|p| p.done).and_then(|p| p.stopped.clone())
+                if let Some(why) = self
+                    .rl
+                    .value()
+                    .filter(|p| p.done)
+                    .and_then(|p| p.stopped.clone())
                 {
                     self.messages.say(Level::Error, format!("RL: {why}"));
                 }

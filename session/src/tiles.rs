@@ -13,6 +13,7 @@ use std::collections::VecDeque;
 
 use dmpscope_core::Result;
 use dmpscope_core::landscape::{FillOrder, Grid, Landscape, fill_order};
+use dmpscope_core::quantity::{self, PointValues};
 
 /// What became of an answer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -92,8 +93,8 @@ impl TiledFill {
         }
     }
 
-    /// Stores the answer for `tile` of `generation`: `[sum d, S, a_peak]`
-    /// per point, flat.
+    /// Stores the answer for `tile` of `generation`: every quantity of the
+    /// table (`dmpscope_core::quantity`) per point, flat.
     pub fn accept(&mut self, generation: u64, tile: usize, values: &[f64]) -> Answer {
         if generation != self.generation {
             return Answer::Stale;
@@ -104,11 +105,14 @@ impl TiledFill {
         if self.stored[tile] {
             return Answer::Duplicate;
         }
-        if values.len() != 3 * points.len() {
+        if values.len() != quantity::COUNT * points.len() {
             return Answer::Malformed;
         }
-        let triples: Vec<[f64; 3]> = values.chunks_exact(3).map(|v| [v[0], v[1], v[2]]).collect();
-        if self.landscape.store(points, &triples).is_err() {
+        let points_values: Vec<PointValues> = values
+            .chunks_exact(quantity::COUNT)
+            .filter_map(|v| v.try_into().ok())
+            .collect();
+        if self.landscape.store(points, &points_values).is_err() {
             return Answer::Malformed;
         }
         self.stored[tile] = true;
@@ -189,11 +193,7 @@ mod tests {
         let one_pass = job.landscape();
         let tiled = fill.landscape();
         assert_eq!(tiled.filled, one_pass.filled);
-        for (a, b) in [
-            (&tiled.d_sum, &one_pass.d_sum),
-            (&tiled.s, &one_pass.s),
-            (&tiled.a_peak, &one_pass.a_peak),
-        ] {
+        for (a, b) in tiled.values.iter().zip(&one_pass.values) {
             let same = a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
             assert!(same, "the same bits as one pass");
         }
@@ -209,7 +209,10 @@ mod tests {
             .expect("a tile");
         let values = answer(&model, &fill, &points);
         assert_eq!(fill.accept(1, t, &values), Answer::Stale);
-        assert_eq!(fill.accept(2, t, &values[..3]), Answer::Malformed);
+        assert_eq!(
+            fill.accept(2, t, &values[..quantity::COUNT]),
+            Answer::Malformed
+        );
         assert_eq!(fill.accept(2, 99, &values), Answer::Malformed);
         assert_eq!(fill.landscape().filled, 0, "nothing stored yet");
         assert_eq!(fill.accept(2, t, &values), Answer::Stored);

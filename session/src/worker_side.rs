@@ -115,7 +115,7 @@ impl WorkerState {
     }
 
     /// A tile of `generation`: `points` are `(i_dm, i_km)` pairs flat; the
-    /// answer is `[sum d, S, a_peak]` per point, flat.
+    /// answer is every quantity of the table per point, flat.
     pub fn tile(&self, generation: u64, points: &[u32]) -> Result<Vec<f64>, String> {
         let pairs: Vec<(u32, u32)> = points.chunks_exact(2).map(|p| (p[0], p[1])).collect();
         let Some((model, blank)) = self.grids.get(&generation) else {

@@ -178,7 +178,7 @@ fn a_peak_limit_gives_a_constrained_optimum_or_says_none_is_within() {
     let x = session.extraction().expect("optimum").clone();
     let free_peak = x.eval.a_peak.iter().copied().fold(0.0, f64::max);
     let land = &session.shown().expect("landscape").snapshot.landscape;
-    let lowest = land.a_peak.iter().copied().fold(f64::INFINITY, f64::min);
+    let lowest = land.a_peak().iter().copied().fold(f64::INFINITY, f64::min);
     assert!(
         lowest < free_peak,
         "the limit must bind: {lowest} vs {free_peak}"
@@ -274,8 +274,8 @@ fn one_demo_says_what_the_diagnostics_need_and_the_rest_works() {
 
 #[test]
 fn a_new_target_recomputes_only_the_generalised_run() {
-    use dmpscope_session::{GenSource, GeneraliseSpec};
     use dmpscope_core::Scaling;
+    use dmpscope_session::{GenSource, GeneraliseSpec};
     let mut settings = Settings::with_grid_points(8);
     let mut session = session_on(vec![Source::sample()], &settings);
     let step = |session: &mut Session, settings: &Settings| {

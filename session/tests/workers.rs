@@ -83,7 +83,10 @@ impl Fake {
             }
             Held::Forget(generation) => w.state.forget(generation),
             Held::Piece(generation, kind, piece, payload) => {
-                if self.fail.is_some_and(|(f, after)| f == i && w.pieces == after) {
+                if self
+                    .fail
+                    .is_some_and(|(f, after)| f == i && w.pieces == after)
+                {
                     w.dead = true;
                     out.push(FromWorker::Died {
                         worker: i,
@@ -215,7 +218,10 @@ fn tiles_out_of_order_lost_and_from_a_failed_worker_give_the_inline_landscape() 
     let stats = pooled.worker_stats();
     assert_eq!((stats.workers, stats.alive), (3, 2), "{stats:?}");
     assert!(stats.tiles_from_workers >= 576 / 128, "{stats:?}");
-    assert!(stats.copies >= 1, "the lost tile was handed out again: {stats:?}");
+    assert!(
+        stats.copies >= 1,
+        "the lost tile was handed out again: {stats:?}"
+    );
     let told: Vec<&str> = pooled
         .messages()
         .iter()
@@ -263,7 +269,10 @@ fn rl_runs_trained_by_the_pool_equal_the_inline_runs_and_a_dead_workers_run_rest
     };
     let inline = train(on_sample(Session::new(Runner::inline()), &settings));
     // Worker 0 dies at its first run: that run goes to the others.
-    let pooled = train(on_sample(pooled(Fake::new(3, None, Some((0, 0)))), &settings));
+    let pooled = train(on_sample(
+        pooled(Fake::new(3, None, Some((0, 0)))),
+        &settings,
+    ));
     let (a, b) = (
         inline.rl().expect("inline run").1,
         pooled.rl().expect("pooled run").1,

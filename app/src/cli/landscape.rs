@@ -103,8 +103,9 @@ pub fn landscape_and_optimum(
 }
 
 /// Writes the landscape JSON: the report of `dmpscope_core::report` (keys
-/// `k`, `demos`, `optimum`, `table`) plus the grid's axes `dm`, `km` and the
-/// grids `d_sum`, `s`, `j` as rows over D/M.
+/// `k`, `demos`, `optimum`, `table`) plus the grid's axes `dm`, `km`, every
+/// quantity of the landscape's table by its key (`d_sum`, `s`, `a_peak`)
+/// and `j`, as rows over D/M.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (_, model, land, optimum) = landscape_and_optimum(&args.input, &args.grid)?;
     let k = args.grid.k;
@@ -113,11 +114,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(map) = doc.as_object_mut() {
         map.insert("dm".into(), serde_json::to_value(&land.dm)?);
         map.insert("km".into(), serde_json::to_value(&land.km)?);
-        map.insert(
-            "d_sum".into(),
-            serde_json::to_value(land.rows(&land.d_sum))?,
-        );
-        map.insert("s".into(), serde_json::to_value(land.rows(&land.s))?);
+        for q in dmpscope_core::quantity::ALL {
+            let rows = land.rows(land.values(q));
+            map.insert(q.about().key.into(), serde_json::to_value(rows)?);
+        }
         map.insert("j".into(), serde_json::to_value(land.rows(&land.j(k)))?);
     }
     let mut text = serde_json::to_string(&doc)?;

@@ -121,7 +121,7 @@ impl DmpApp {
             Command::Open { folder } => self.dialogs.open(folder, wake),
             Command::Browse => self.dialogs.browse(false),
             Command::Export(e) => match self.export(e) {
-                Ok((name, bytes)) => self.dialogs.save(name, bytes, wake),
+                Ok((name, bytes)) => self.dialogs.save(&name, bytes, wake),
                 Err(e) => self.session.apply(session::Command::Say(Notice::error(e))),
             },
         }
@@ -129,7 +129,7 @@ impl DmpApp {
 
     /// The file name and bytes of an export (what the save dialog is
     /// given; tests read it).
-    pub fn export(&self, what: Export) -> Result<(&'static str, Vec<u8>), String> {
+    pub fn export(&self, what: Export) -> Result<(String, Vec<u8>), String> {
         let report = || {
             self.session
                 .report()
@@ -140,21 +140,18 @@ impl DmpApp {
                 let shown = self.session.shown().ok_or("no landscape to export yet")?;
                 let bytes =
                     heatmap_png(map.values(shown), &shown.grid(), self.settings.log_colour)?;
-                let name = match map {
-                    super::commands::Map::J => "dmpscope-J.png",
-                    super::commands::Map::DSum => "dmpscope-sum-d.png",
-                    super::commands::Map::S => "dmpscope-S.png",
-                    super::commands::Map::APeak => "dmpscope-a-peak.png",
-                };
-                (name, bytes)
+                (map.file_name(), bytes)
             }
             Export::ReportJson => {
                 let text = serde_json::to_string_pretty(&report()?).map_err(|e| e.to_string())?;
-                ("dmpscope-report.json", text.into_bytes())
+                ("dmpscope-report.json".into(), text.into_bytes())
             }
-            Export::TableCsv => ("dmpscope-table.csv", report()?.csv().into_bytes()),
-            Export::TableMarkdown => ("dmpscope-table.md", report()?.markdown().into_bytes()),
-            Export::Dmp => ("dmpscope-dmp.json", self.dmp_json()?.into_bytes()),
+            Export::TableCsv => ("dmpscope-table.csv".into(), report()?.csv().into_bytes()),
+            Export::TableMarkdown => (
+                "dmpscope-table.md".into(),
+                report()?.markdown().into_bytes(),
+            ),
+            Export::Dmp => ("dmpscope-dmp.json".into(), self.dmp_json()?.into_bytes()),
         })
     }
 

@@ -3,6 +3,7 @@
 //! frame's layout.
 
 use crate::session;
+use dmpscope_core::Quantity;
 
 /// A panel's request.
 #[derive(Clone, Debug)]
@@ -42,17 +43,13 @@ pub enum Export {
     Dmp,
 }
 
-/// One of the three heat maps.
+/// A heat map: J, or a quantity of the landscape's table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Map {
     /// J = S + k sum d.
     J,
-    /// sum d.
-    DSum,
-    /// S.
-    S,
-    /// The largest peak acceleration of any demo.
-    APeak,
+    /// A quantity the landscape keeps per point (`dmpscope_core::quantity`).
+    Quantity(Quantity),
 }
 
 impl Map {
@@ -60,19 +57,37 @@ impl Map {
     pub fn title(self) -> &'static str {
         match self {
             Self::J => "J = S + k sum d",
-            Self::DSum => "sum d [m]",
-            Self::S => "S",
-            Self::APeak => "max a_peak [m/s²]",
+            Self::Quantity(q) => q.about().title,
         }
+    }
+
+    /// The map's short name (menus, buttons).
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::J => "J",
+            Self::Quantity(q) => q.about().label,
+        }
+    }
+
+    /// The file name of its PNG export.
+    pub fn file_name(self) -> String {
+        let part = match self {
+            Self::J => "J",
+            Self::Quantity(q) => q.about().file,
+        };
+        format!("dmpscope-{part}.png")
+    }
+
+    /// Every map: J, then the table's quantities.
+    pub fn all() -> impl Iterator<Item = Self> {
+        std::iter::once(Self::J).chain(dmpscope_core::quantity::ALL.map(Self::Quantity))
     }
 
     /// The values of this map in `shown`.
     pub fn values(self, shown: &session::Shown) -> &[f64] {
         match self {
             Self::J => &shown.j,
-            Self::DSum => &shown.d_sum,
-            Self::S => &shown.s,
-            Self::APeak => &shown.a_peak,
+            Self::Quantity(q) => shown.values(q),
         }
     }
 }

@@ -173,14 +173,7 @@ pub fn show(
     op: &mut (f64, f64),
     side: f32,
 ) -> bool {
-    let mask_key = input.mask.map_or(0, |(_, limit)| limit.to_bits());
-    let key = (input.key.0, input.key.1, input.log_colour, mask_key);
-    if cache.key != Some(key) || cache.texture.is_none() {
-        let (texture, range) = build(ui.ctx(), input);
-        cache.texture = Some(texture);
-        cache.range = range;
-        cache.key = Some(key);
-    }
+    refresh_cache(ui.ctx(), cache, input);
     ui.label(egui::RichText::new(input.title).strong());
     let side = side.max(80.0);
     let (outer, _) = ui.allocate_exact_size(
@@ -193,26 +186,90 @@ pub fn show(
         ui.scope_id().with(input.title),
         Sense::click_and_drag(),
     );
-    let painter = ui.painter_at(outer);
+    let area = MapArea {
+        painter: ui.painter_at(outer),
+        outer,
+        map,
+        grid: input.grid,
+        text: ui.visuals().text_color(),
+        font: FontId::proportional(11.0),
+    };
     if let Some(texture) = &cache.texture {
-        painter.image(
+        area.painter.image(
             texture.id(),
             map,
             Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0)),
             Color32::WHITE,
         );
     }
-    let grid = input.grid;
-    let to_screen = |dm: f64, km: f64| {
+    heatmap_axes_ui(&area);
+    heatmap_colour_bar_ui(&area, side, cache.range, input.log_colour);
+    if input.iso_zeta {
+        iso_zeta(
+            &area.painter,
+            &area.grid,
+            &|dm: f64, km: f64| area.to_screen(dm, km),
+            map,
+            &area.font,
+        );
+    }
+    heatmap_points_ui(&area, input.cloud, markers, *op);
+    heatmap_readout_ui(&area, &response, input);
+    if (response.dragged() || response.clicked())
+        && let Some(pos) = response.interact_pointer_pos()
+    {
+        *op = area.at(pos);
+        return true;
+    }
+    false
+}
+
+/// Rebuilds the cached texture when the map's values, colour scale or mask changed.
+fn refresh_cache(ctx: &egui::Context, cache: &mut Cache, input: &MapInput<'_>) {
+    let mask_key = input.mask.map_or(0, |(_, limit)| limit.to_bits());
+    let key = (input.key.0, input.key.1, input.log_colour, mask_key);
+    if cache.key != Some(key) || cache.texture.is_none() {
+        let (texture, range) = build(ctx, input);
+        cache.texture = Some(texture);
+        cache.range = range;
+        cache.key = Some(key);
+    }
+}
+
+/// Where a map is drawn: its painter, the space with its axes, the map
+/// square, its grid and the text's colour and font.
+struct MapArea {
+    painter: egui::Painter,
+    outer: Rect,
+    map: Rect,
+    grid: Grid,
+    text: Color32,
+    font: FontId,
+}
+
+impl MapArea {
+    /// The screen position of `(D/M, K/M)`.
+    fn to_screen(&self, dm: f64, km: f64) -> Pos2 {
         Pos2::new(
-            map.left() + fraction(&grid.dm, dm) as f32 * map.width(),
-            map.bottom() - fraction(&grid.km, km) as f32 * map.height(),
+            self.map.left() + fraction(&self.grid.dm, dm) as f32 * self.map.width(),
+            self.map.bottom() - fraction(&self.grid.km, km) as f32 * self.map.height(),
         )
-    };
-    let text = ui.visuals().text_color();
-    let font = FontId::proportional(11.0);
+    }
+
+    /// The `(D/M, K/M)` at a screen position, clamped to the axes.
+    fn at(&self, pos: Pos2) -> (f64, f64) {
+        let fx = f64::from((pos.x - self.map.left()) / self.map.width());
+        let fy = f64::from((self.map.bottom() - pos.y) / self.map.height());
+        (value_at(&self.grid.dm, fx), value_at(&self.grid.km, fy))
+    }
+}
+
+/// The ticks and names of the D/M and K/M axes.
+fn heatmap_axes_ui(area: &MapArea) {
+    let (painter, grid, map) = (&area.painter, &area.grid, area.map);
+    let (text, font) = (area.text, &area.font);
     for v in ticks(&grid.dm) {
-        let p = to_screen(v, grid.km.lo);
+        let p = area.to_screen(v, grid.km.lo);
         painter.text(
             Pos2::new(p.x, map.bottom() + 3.0),
             Align2::CENTER_TOP,
@@ -222,7 +279,7 @@ pub fn show(
         );
     }
     for v in ticks(&grid.km) {
-        let p = to_screen(grid.dm.lo, v);
+        let p = area.to_screen(grid.dm.lo, v);
         painter.text(
             Pos2::new(map.left() - 4.0, p.y),
             Align2::RIGHT_CENTER,
@@ -239,13 +296,17 @@ pub fn show(
         text,
     );
     painter.text(
-        Pos2::new(outer.left() + 2.0, map.top()),
+        Pos2::new(area.outer.left() + 2.0, map.top()),
         Align2::LEFT_TOP,
         "K/M",
         font.clone(),
         text,
     );
-    // Colour bar.
+}
+
+/// The colour bar right of the map (`side` high), labelled with the colour range `(lo, hi)`.
+fn heatmap_colour_bar_ui(area: &MapArea, side: f32, (lo, hi): (f64, f64), log_colour: bool) {
+    let (painter, map) = (&area.painter, area.map);
     let bar = Rect::from_min_size(
         Pos2::new(map.right() + 8.0, map.top()),
         Vec2::new(BAR_WIDTH, side),
@@ -262,65 +323,62 @@ pub fn show(
         );
         painter.rect_filled(r, 0.0, colour(f64::from(t0)));
     }
-    let (lo, hi) = cache.range;
-    let shown = |v: f64| if input.log_colour { v.exp() } else { v };
+    let shown = |v: f64| if log_colour { v.exp() } else { v };
     if lo.is_finite() {
         painter.text(
             bar.right_top() + Vec2::new(3.0, 0.0),
             Align2::LEFT_TOP,
             format!("{:.3}", shown(hi)),
-            font.clone(),
-            text,
+            area.font.clone(),
+            area.text,
         );
         painter.text(
             bar.right_bottom() + Vec2::new(3.0, 0.0),
             Align2::LEFT_BOTTOM,
             format!("{:.3}", shown(lo)),
-            font.clone(),
-            text,
+            area.font.clone(),
+            area.text,
         );
     }
-    if input.iso_zeta {
-        iso_zeta(&painter, &grid, &to_screen, map, &font);
-    }
-    for &(dm, km) in input.cloud {
-        painter.circle_filled(to_screen(dm, km), 2.0, Color32::from_rgb(255, 200, 120));
+}
+
+/// The cloud of points, the labelled markers and the operating point `op`.
+fn heatmap_points_ui(area: &MapArea, cloud: &[(f64, f64)], markers: &[Marker], op: (f64, f64)) {
+    let painter = &area.painter;
+    for &(dm, km) in cloud {
+        painter.circle_filled(
+            area.to_screen(dm, km),
+            2.0,
+            Color32::from_rgb(255, 200, 120),
+        );
     }
     for m in markers {
-        let p = to_screen(m.dm, m.km);
+        let p = area.to_screen(m.dm, m.km);
         painter.circle_stroke(p, 4.0, Stroke::new(1.5, m.colour));
         painter.text(
             p + Vec2::new(5.0, -5.0),
             Align2::LEFT_BOTTOM,
             &m.label,
-            font.clone(),
+            area.font.clone(),
             m.colour,
         );
     }
-    let p = to_screen(op.0, op.1);
+    let p = area.to_screen(op.0, op.1);
     painter.circle_filled(p, 5.0, Color32::WHITE);
     painter.circle_stroke(p, 5.0, Stroke::new(1.5, Color32::BLACK));
-    let at = |pos: Pos2| {
-        let fx = f64::from((pos.x - map.left()) / map.width());
-        let fy = f64::from((map.bottom() - pos.y) / map.height());
-        (value_at(&grid.dm, fx), value_at(&grid.km, fy))
-    };
+}
+
+/// The read-out of sum d, S, J and a_peak under the pointer.
+fn heatmap_readout_ui(area: &MapArea, response: &egui::Response, input: &MapInput<'_>) {
     if let Some(pos) = response.hover_pos() {
-        let (dm, km) = at(pos);
-        let (i, j) = (nearest(&grid.dm, dm), nearest(&grid.km, km));
+        let (dm, km) = area.at(pos);
+        let (i, j) = (nearest(&area.grid.dm, dm), nearest(&area.grid.km, km));
         let [d, s, jv, a] = (input.readout)(i, j);
         let zeta = dmpscope_core::model::zeta(dm, km);
         response.clone().on_hover_text_at_pointer(format!(
             "D/M {dm:.3}  K/M {km:.3}  zeta {zeta:.3}\nsum d {d:.5} m\nS {s:.5}\nJ {jv:.5}\nmax a_peak {a:.3} m/s²"
         ));
     }
-    if (response.dragged() || response.clicked())
-        && let Some(pos) = response.interact_pointer_pos()
-    {
-        *op = at(pos);
-        return true;
-    }
-    false
 }
 
 /// The iso-zeta lines `K/M = (D/M / (2 zeta))^2` across the map, each

@@ -28,9 +28,9 @@ mod view_state;
 
 pub use app::DmpApp;
 pub use commands::{Command, Export, Map};
-pub use view_state::{RlChoices, ViewState};
 #[cfg(feature = "testing")]
 pub use testing::{SharedHooks, TestHooks};
+pub use view_state::{RlChoices, ViewState};
 
 /// Opens the app window on `files` (the bundled sample when empty).
 #[cfg(not(target_arch = "wasm32"))]

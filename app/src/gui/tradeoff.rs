@@ -8,6 +8,7 @@ use eframe::egui::{self, Color32};
 use egui_plot::{Line, MarkerShape, Plot, PlotPoint, Points};
 
 use crate::session::Shown;
+use dmpscope_core::Quantity;
 
 /// The front of one snapshot, computed once per snapshot.
 #[derive(Default)]
@@ -21,7 +22,7 @@ impl FrontCache {
     /// The front of `shown` (recomputed when it is a new snapshot).
     pub fn front(&mut self, shown: &Shown) -> &[usize] {
         if self.version != Some(shown.version) {
-            self.front = pareto_front(&shown.d_sum, &shown.s);
+            self.front = pareto_front(shown.values(Quantity::DSum), shown.values(Quantity::S));
             self.version = Some(shown.version);
         }
         &self.front
@@ -43,7 +44,12 @@ pub struct Marks {
 pub fn show(ui: &mut egui::Ui, shown: &Shown, front: &[usize], marks: &Marks) -> Option<usize> {
     let points: Vec<[f64; 2]> = front
         .iter()
-        .map(|&i| [shown.d_sum[i], shown.s[i]])
+        .map(|&i| {
+            [
+                shown.values(Quantity::DSum)[i],
+                shown.values(Quantity::S)[i],
+            ]
+        })
         .collect();
     ui.label(format!(
         "{} of {} grid points are Pareto-optimal in (sum d, S): none beats them in both. \
@@ -51,7 +57,7 @@ pub fn show(ui: &mut egui::Ui, shown: &Shown, front: &[usize], marks: &Marks) ->
          may lie a little below this front of grid points). Click to move the \
          operating point to the nearest point of the front.",
         front.len(),
-        shown.d_sum.len()
+        shown.values(Quantity::DSum).len()
     ));
     let response = Plot::new("pareto front")
         .height((ui.available_height() - 8.0).max(120.0))

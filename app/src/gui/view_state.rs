@@ -95,7 +95,7 @@ impl ViewState {
             t: 0.5,
             view3d: View3d::new(render_state),
             maps: Default::default(),
-            second_map: Map::S,
+            second_map: Map::Quantity(dmpscope_core::Quantity::S),
             right: RightTab::default(),
             hovered: None,
             hovering: None,

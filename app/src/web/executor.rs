@@ -11,9 +11,7 @@ use std::time::Duration;
 
 use dmpscope_core::{Model, Result};
 use dmpscope_session::executor::{Executor, PageTime, Spawned, Task, TaskHandle, TaskStep};
-use dmpscope_session::workers::{
-    Dispatcher, Exchanged, Handout, Setup, WorkerStats, Workers,
-};
+use dmpscope_session::workers::{Dispatcher, Exchanged, Handout, Setup, WorkerStats, Workers};
 use eframe::web_sys;
 use web_time::Instant;
 

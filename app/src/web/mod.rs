@@ -97,7 +97,8 @@ pub fn start() {
                     CONTEXT.with(|c| *c.borrow_mut() = Some(cc.egui_ctx.clone()));
                     let ctx = cc.egui_ctx.clone();
                     let executor = WebExecutor::new(move || ctx.request_repaint());
-                    let app = DmpApp::new(cc, Vec::new(), Runner::new(std::sync::Arc::new(executor)));
+                    let app =
+                        DmpApp::new(cc, Vec::new(), Runner::new(std::sync::Arc::new(executor)));
                     #[cfg(feature = "testing")]
                     let app = app.with_test_hooks(hooks);
                     Ok(Box::new(app))

@@ -98,9 +98,8 @@ pub fn dmpscope_worker_run_step(generation: f64, run: f64, budget_ms: f64) -> Op
         h.borrow_mut()
             .run_step(generation as u64, run as usize, budget, &now)
     })?;
-    let text = |tag: &str, update| {
-        format!("{tag}{}", serde_json::to_string(update).unwrap_or_default())
-    };
+    let text =
+        |tag: &str, update| format!("{tag}{}", serde_json::to_string(update).unwrap_or_default());
     Some(match slice {
         RunSlice::Nothing => String::new(),
         RunSlice::Progress(update) => text("P", &update),

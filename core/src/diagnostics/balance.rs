@@ -38,7 +38,7 @@ pub fn balanced_k(landscape: &Landscape) -> Option<f64> {
             .filter(|x| x.is_finite())
             .collect::<Vec<_>>()
     };
-    let (s, d) = (finite(&landscape.s), finite(&landscape.d_sum));
+    let (s, d) = (finite(landscape.s()), finite(landscape.d_sum()));
     if s.is_empty() || d.is_empty() {
         return None;
     }

@@ -222,7 +222,7 @@ impl DiagnosticsJob {
         let depth = depth(landscape, k, extraction.j);
         let shares = model.similarity().shares(x.dm, x.km);
         let s_minimum = (n >= 2)
-            .then(|| refine(landscape, &landscape.s, |dm, km| model.s(dm, km)))
+            .then(|| refine(landscape, landscape.s(), |dm, km| model.s(dm, km)))
             .flatten()
             .map(|r| SMinimum {
                 dm: r.dm,

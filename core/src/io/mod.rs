@@ -14,6 +14,7 @@ pub mod dmp_doc;
 pub mod export;
 pub mod foxglove_json;
 pub mod foxglove_proto;
+pub mod formats;
 pub mod foxglove_schemas;
 pub mod mcap_file;
 pub mod ros1;

@@ -9,6 +9,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use super::formats::{self, Reader};
 use super::mcap_file::{LoadOptions, Loaded, READ_PIECE, load_reader};
 use crate::demo::RawDemo;
 use crate::error::{Error, Result};
@@ -30,19 +31,15 @@ pub enum Folder {
     },
 }
 
-/// Whether a path names an MCAP file, plain or zstd-compressed.
+/// Whether a path names a file a folder of recordings is walked for (the
+/// registry's [`formats::walked`]: MCAP, plain or zstd-compressed).
 pub fn is_mcap(path: &Path) -> bool {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().to_ascii_lowercase())
-        .unwrap_or_default();
-    name.ends_with(".mcap") || name.ends_with(".mcap.zstd") || name.ends_with(".mcap.zst")
+    formats::walked(path)
 }
 
-/// Whether a path names a zstd-compressed file.
+/// Whether a file name says zstd-compressed MCAP.
 pub fn is_zstd(name: &str) -> bool {
-    let name = name.to_ascii_lowercase();
-    name.ends_with(".zstd") || name.ends_with(".zst")
+    formats::by_name(name).is_some_and(|f| f.reader == Reader::ZstdMcap)
 }
 
 /// Looks at a folder: a bag or a folder of recordings.

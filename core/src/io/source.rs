@@ -7,6 +7,7 @@
 use std::path::Path;
 
 use super::csv::load_csv;
+use super::formats::{self, Reader};
 use super::mcap_file::{LoadOptions, Loaded, load_bytes_with};
 use super::rosbag2::{self, Folder, ROSBAG2_METADATA};
 use crate::arrange::{Arrangement, Overrides, arrange};
@@ -51,37 +52,46 @@ pub fn load_streams(
     options: &LoadOptions,
 ) -> Result<SourceDemos> {
     match data {
-        SourceData::Bytes(bytes) if is_csv(name) => {
-            let text = std::str::from_utf8(bytes).map_err(|e| Error::Source {
-                path: name.to_owned(),
-                reason: format!("not UTF-8 text: {e}"),
-            })?;
-            Ok(csv_demo(name, text, options)?)
-        }
-        SourceData::Bytes(bytes) if rosbag2::is_zstd(name) => {
-            let inflated = zstd::stream::decode_all(bytes).map_err(|e| Error::Source {
-                path: name.to_owned(),
-                reason: format!(
-                    "a zstd-compressed file that does not decompress ({e}); `zstd -d` writes \
-                     an uncompressed copy"
-                ),
-            })?;
-            Ok(from_mcap(name, load_bytes_with(name, &inflated, options)?))
-        }
-        SourceData::Bytes(bytes) => Ok(from_mcap(name, load_bytes_with(name, bytes, options)?)),
+        SourceData::Bytes(bytes) => match formats::detect(name, bytes).reader {
+            Reader::Csv => {
+                let text = std::str::from_utf8(bytes).map_err(|e| Error::Source {
+                    path: name.to_owned(),
+                    reason: format!("not UTF-8 text: {e}"),
+                })?;
+                csv_demo(name, text, options)
+            }
+            Reader::ZstdMcap => {
+                let inflated = zstd::stream::decode_all(bytes).map_err(|e| Error::Source {
+                    path: name.to_owned(),
+                    reason: format!(
+                        "a zstd-compressed file that does not decompress ({e}); `zstd -d` \
+                         writes an uncompressed copy"
+                    ),
+                })?;
+                Ok(from_mcap(name, load_bytes_with(name, &inflated, options)?))
+            }
+            Reader::Mcap => Ok(from_mcap(name, load_bytes_with(name, bytes, options)?)),
+        },
         SourceData::Path(path) => {
             let path = folder_of_metadata(path).unwrap_or(path);
             if path.is_dir() {
                 return load_folder(path, options);
             }
-            if is_csv(name) || has_extension(path, "csv") {
-                let text = std::fs::read_to_string(path).map_err(|reason| Error::Io {
-                    file: name.to_owned(),
-                    reason,
-                })?;
-                return csv_demo(name, &text, options);
+            let by_name = formats::by_name(name)
+                .or_else(|| formats::by_name(&path.to_string_lossy()))
+                .map(|f| f.reader);
+            match by_name {
+                Some(Reader::Csv) => {
+                    let text = std::fs::read_to_string(path).map_err(|reason| Error::Io {
+                        file: name.to_owned(),
+                        reason,
+                    })?;
+                    csv_demo(name, &text, options)
+                }
+                // MCAP, plain or compressed (rosbag2's reader tells them
+                // apart), and what no name identifies.
+                _ => Ok(from_mcap(name, rosbag2::read_file(path, name, options)?)),
             }
-            Ok(from_mcap(name, rosbag2::read_file(path, name, options)?))
         }
     }
 }
@@ -197,13 +207,4 @@ fn from_mcap(file: &str, loaded: Loaded) -> SourceDemos {
         streams: Vec::new(),
         skipped: loaded.skipped,
     }
-}
-
-fn is_csv(name: &str) -> bool {
-    has_extension(Path::new(name), "csv")
-}
-
-fn has_extension(path: &Path, ext: &str) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
 }

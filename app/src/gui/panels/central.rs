@@ -3,6 +3,7 @@
 //! do), and the 3D view below.
 
 use dmpscope_core::presets::PAPER_PRESETS;
+use dmpscope_core::quantity::{self, Quantity};
 use eframe::egui::{self, Color32};
 
 use super::super::commands::{Command, Map};
@@ -95,10 +96,10 @@ fn maps(
     let readout = |i: usize, j: usize| {
         let idx = i * n_km + j;
         [
-            shown.d_sum[idx],
-            shown.s[idx],
+            shown.values(Quantity::DSum)[idx],
+            shown.values(Quantity::S)[idx],
             shown.j[idx],
-            shown.a_peak[idx],
+            shown.values(Quantity::APeak)[idx],
         ]
     };
     let log_colour = s.log_colour;
@@ -119,7 +120,9 @@ fn maps(
             grid,
             log_colour,
             readout: &readout,
-            mask: limit.filter(|_| on_j).map(|l| (shown.a_peak.as_slice(), l)),
+            mask: limit
+                .filter(|_| on_j)
+                .map(|l| (shown.values(Quantity::APeak), l)),
             iso_zeta: true,
             cloud: if on_j { &cloud } else { &[] },
         };
@@ -134,10 +137,12 @@ fn maps(
     ui.horizontal_top(|ui| {
         ui.vertical(|ui| map(ui, c_j, Map::J, big));
         ui.vertical(|ui| {
-            map(ui, c_d, Map::DSum, small);
+            map(ui, c_d, Map::Quantity(Quantity::DSum), small);
             ui.horizontal(|ui| {
-                ui.selectable_value(&mut chosen, Map::S, "S");
-                ui.selectable_value(&mut chosen, Map::APeak, "a_peak");
+                // Any other quantity of the table in the second small map.
+                for q in quantity::ALL.into_iter().filter(|&q| q != Quantity::DSum) {
+                    ui.selectable_value(&mut chosen, Map::Quantity(q), q.about().label);
+                }
             });
             map(ui, c_s, chosen, small);
         });

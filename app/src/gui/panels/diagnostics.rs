@@ -339,7 +339,7 @@ fn first_limit(session: &Session) -> f64 {
         .extraction()
         .map(|x| x.eval.a_peak.iter().copied().fold(0.0, f64::max));
     let least = session.shown().map(|s| {
-        s.a_peak
+        s.values(dmpscope_core::Quantity::APeak)
             .iter()
             .copied()
             .filter(|v| v.is_finite())

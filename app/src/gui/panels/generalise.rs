@@ -70,7 +70,38 @@ pub fn generalise_ui(
         return;
     };
     let current = session.generalise_spec().copied();
-    let mut on = current.is_some();
+    if generalise_switch_ui(ui, current.is_some(), view.selected, out) {
+        return;
+    }
+    let Some(mut spec) = current else {
+        return;
+    };
+    // (A demo source follows the selected demo: `DmpApp` sees to it each
+    // frame, whichever tab is open.)
+    let before = spec;
+    generalise_source_ui(ui, &mut spec, view.selected);
+    if spec.source != before.source {
+        // A new source starts at its own target.
+        spec = spec.reset();
+    }
+    if let Some(own) = own_target(model, spec.source) {
+        generalise_target_ui(ui, &mut spec, own);
+    }
+    generalise_result_ui(ui, session);
+    generalise_export_ui(ui, session, out);
+    ui.weak("3D view: drag the white goal ring or start disc (Shift: height)");
+    if spec != before {
+        out.push(SessionCommand::SetGeneralise(Some(spec)).into());
+    }
+}
+
+/// The on/off checkbox (explained while off); true when toggled (its command pushed).
+fn generalise_switch_ui(
+    ui: &mut egui::Ui,
+    mut on: bool,
+    selected: usize,
+    out: &mut Vec<Command>,
+) -> bool {
     if !on {
         ui.label(
             "Run the selected demo, or the skill of all demos, at the operating point's gains \
@@ -85,20 +116,17 @@ pub fn generalise_ui(
         )
         .changed()
     {
-        out.push(
-            SessionCommand::SetGeneralise(on.then(|| GeneraliseSpec::demo(view.selected))).into(),
-        );
-        return;
+        out.push(SessionCommand::SetGeneralise(on.then(|| GeneraliseSpec::demo(selected))).into());
+        return true;
     }
-    let Some(mut spec) = current else {
-        return;
-    };
-    // (A demo source follows the selected demo: `DmpApp` sees to it each
-    // frame, whichever tab is open.)
-    let before = spec;
+    false
+}
+
+/// The source (the selected demo or the skill) and the scaling mode.
+fn generalise_source_ui(ui: &mut egui::Ui, spec: &mut GeneraliseSpec, selected: usize) {
     ui.horizontal(|ui| {
         ui.label("of");
-        let demo = GenSource::Demo(view.selected);
+        let demo = GenSource::Demo(selected);
         ui.selectable_value(&mut spec.source, demo, "the selected demo");
         ui.selectable_value(&mut spec.source, GenSource::Skill, "the skill of all demos")
             .on_hover_text(
@@ -120,51 +148,58 @@ pub fn generalise_ui(
                  singularity",
         );
     });
-    if spec.source != before.source {
-        // A new source starts at its own target.
-        spec = spec.reset();
+}
+
+/// The start, goal and duration, with the source's `own` ones as defaults, and Reset.
+fn generalise_target_ui(
+    ui: &mut egui::Ui,
+    spec: &mut GeneraliseSpec,
+    own: ([f64; 3], [f64; 3], f64),
+) {
+    let (own_start, own_goal, own_duration) = own;
+    let start = spec.target.start.unwrap_or(own_start);
+    let goal = spec.target.goal.unwrap_or(own_goal);
+    if let Some(v) = triple(ui, "start", start) {
+        spec.target.start = Some(v);
     }
-    if let Some((own_start, own_goal, own_duration)) = own_target(model, spec.source) {
-        let start = spec.target.start.unwrap_or(own_start);
-        let goal = spec.target.goal.unwrap_or(own_goal);
-        if let Some(v) = triple(ui, "start", start) {
-            spec.target.start = Some(v);
-        }
-        if let Some(v) = triple(ui, "goal ", goal) {
-            spec.target.goal = Some(v);
-        }
-        ui.horizontal(|ui| {
-            let l = ui.label("duration T'");
-            let mut d = spec.target.duration_s.unwrap_or(own_duration);
-            if ui
-                .add(
-                    egui::DragValue::new(&mut d)
-                        .speed(0.01)
-                        .range(0.05..=120.0)
-                        .clamp_existing_to_range(false)
-                        .fixed_decimals(2)
-                        .suffix(" s"),
-                )
-                .labelled_by(l.id)
-                .changed()
-            {
-                spec.target.duration_s = Some(d);
-            }
-            ui.weak(format!("(own {own_duration:.2} s)"));
-            let moved = spec.target
-                != Target {
-                    scaling: spec.target.scaling,
-                    ..Target::default()
-                };
-            if ui
-                .add_enabled(moved, egui::Button::new("Reset"))
-                .on_hover_text("Back to the source's own start, goal and duration")
-                .clicked()
-            {
-                spec = spec.reset();
-            }
-        });
+    if let Some(v) = triple(ui, "goal ", goal) {
+        spec.target.goal = Some(v);
     }
+    ui.horizontal(|ui| {
+        let l = ui.label("duration T'");
+        let mut d = spec.target.duration_s.unwrap_or(own_duration);
+        if ui
+            .add(
+                egui::DragValue::new(&mut d)
+                    .speed(0.01)
+                    .range(0.05..=120.0)
+                    .clamp_existing_to_range(false)
+                    .fixed_decimals(2)
+                    .suffix(" s"),
+            )
+            .labelled_by(l.id)
+            .changed()
+        {
+            spec.target.duration_s = Some(d);
+        }
+        ui.weak(format!("(own {own_duration:.2} s)"));
+        let moved = spec.target
+            != Target {
+                scaling: spec.target.scaling,
+                ..Target::default()
+            };
+        if ui
+            .add_enabled(moved, egui::Button::new("Reset"))
+            .on_hover_text("Back to the source's own start, goal and duration")
+            .clicked()
+        {
+            *spec = spec.reset();
+        }
+    });
+}
+
+/// The run's peak speed, a_peak and end error with its warnings, or its error.
+fn generalise_result_ui(ui: &mut egui::Ui, session: &Session) {
     match session.generalised() {
         Some(Ok(g)) => {
             let o = &g.out;
@@ -184,6 +219,10 @@ pub fn generalise_ui(
         }
         None => {}
     }
+}
+
+/// The button exporting the DMP at this target for a robot.
+fn generalise_export_ui(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Command>) {
     ui.horizontal_wrapped(|ui| {
         let ok = session.generalised().is_some_and(|g| g.is_ok());
         if ui
@@ -197,8 +236,4 @@ pub fn generalise_ui(
             out.push(Command::Export(Export::Dmp));
         }
     });
-    ui.weak("3D view: drag the white goal ring or start disc (Shift: height)");
-    if spec != before {
-        out.push(SessionCommand::SetGeneralise(Some(spec)).into());
-    }
 }

@@ -7,6 +7,7 @@
 use dmpscope_core::gaps::GapPolicy;
 use dmpscope_core::group::Grouping;
 use dmpscope_core::io::UpAxis;
+use dmpscope_core::segment::SegmentSettings;
 use eframe::egui;
 
 use super::super::view_state::ViewState;
@@ -16,14 +17,7 @@ use crate::session::Settings;
 pub fn loading_ui(ui: &mut egui::Ui, s: &mut Settings, view: &mut ViewState) {
     let load = &mut s.load;
     egui::Grid::new("loading").show(ui, |ui| {
-        ui.label("up axis");
-        ui.horizontal(|ui| {
-            ui.radio_value(&mut load.up, UpAxis::ZUp, "z")
-                .on_hover_text("z up: ROS (REP 103), Foxglove");
-            ui.radio_value(&mut load.up, UpAxis::YUp, "y (OpenVR)")
-                .on_hover_text("y up: OpenVR's native frame, turned to z up");
-        });
-        ui.end_row();
+        loading_up_axis_ui(ui, &mut load.up);
         list_field(
             ui,
             "frames",
@@ -32,25 +26,7 @@ pub fn loading_ui(ui: &mut egui::Ui, s: &mut Settings, view: &mut ViewState) {
             "all (or: hand_left, 1, ...)",
             "TF child frames or pose indices to keep, comma separated; Enter applies",
         );
-        let l = ui.label("fixed frame");
-        let typed = ui
-            .add(
-                egui::TextEdit::singleline(&mut view.fixed_frame_text)
-                    .hint_text("each transform's parent (or: world)")
-                    .desired_width(160.0),
-            )
-            .labelled_by(l.id)
-            .on_hover_text(
-                "express every TF frame in this frame, composing /tf and /tf_static; Enter \
-                 applies",
-            );
-        if typed.lost_focus() {
-            let f = view.fixed_frame_text.trim();
-            load.fixed_frame = (!f.is_empty()).then(|| f.to_owned());
-        } else if !typed.has_focus() {
-            view.fixed_frame_text = load.fixed_frame.clone().unwrap_or_default();
-        }
-        ui.end_row();
+        loading_fixed_frame_ui(ui, &mut view.fixed_frame_text, &mut load.fixed_frame);
         list_field(
             ui,
             "topics",
@@ -68,79 +44,134 @@ pub fn loading_ui(ui: &mut egui::Ui, s: &mut Settings, view: &mut ViewState) {
             "none (or: /tf_static, *_link)",
             "streams to leave out: glob patterns, comma separated; wins over topics",
         );
-        let l = ui.label("least movement");
-        let mut mm = load.streams.min_extent_m * 1e3;
-        if ui
-            .add(
-                egui::DragValue::new(&mut mm)
-                    .speed(0.5)
-                    .range(0.0..=1000.0)
-                    .suffix(" mm"),
-            )
-            .labelled_by(l.id)
-            .on_hover_text("a stream whose positions span less than this does not move: skipped")
-            .changed()
-        {
-            load.streams.min_extent_m = mm * 1e-3;
-        }
-        ui.end_row();
-        ui.label("a demo is");
-        ui.horizontal(|ui| {
-            let segmented = matches!(load.demos, Grouping::Segmented(_));
-            if ui
-                .radio(load.demos == Grouping::PerTopic, "a topic")
-                .on_hover_text("one per topic, TF child frame or pose index")
-                .clicked()
-            {
-                load.demos = Grouping::PerTopic;
-            }
-            if ui
-                .radio(load.demos == Grouping::PerFile, "a file")
-                .on_hover_text("each file's stream that moves most")
-                .clicked()
-            {
-                load.demos = Grouping::PerFile;
-            }
-            if ui
-                .radio(segmented, "a segment")
-                .on_hover_text("continuous recordings cut at rest periods")
-                .clicked()
-            {
-                load.demos = Grouping::Segmented(view.segment);
-            }
-        });
-        ui.end_row();
-        ui.label("breaks in time");
-        ui.horizontal(|ui| {
-            ui.radio_value(&mut load.gaps, GapPolicy::Split, "split")
-                .on_hover_text(
-                    "a clock jump or a dropout (over max(0.1 s, 10 intervals)) splits the \
-                     stream: each part is a demo",
-                );
-            ui.radio_value(&mut load.gaps, GapPolicy::Keep, "bridge")
-                .on_hover_text("keep the stream whole across it (a warning names it)");
-        });
-        ui.end_row();
+        loading_min_extent_ui(ui, &mut load.streams.min_extent_m);
+        loading_grouping_ui(ui, &mut load.demos, view.segment);
+        loading_gaps_ui(ui, &mut load.gaps);
         if let Grouping::Segmented(seg) = &mut load.demos {
-            let rows: [(&str, &mut f64, f64, &str); 3] = [
-                ("rest speed", &mut seg.rest_speed, 0.005, " m/s"),
-                ("shortest rest", &mut seg.min_rest_s, 0.01, " s"),
-                ("shortest demo", &mut seg.min_segment_s, 0.01, " s"),
-            ];
-            for (name, value, speed, unit) in rows {
-                let l = ui.label(name);
-                ui.add(
-                    egui::DragValue::new(value)
-                        .speed(speed)
-                        .range(0.001..=100.0)
-                        .suffix(unit),
-                )
-                .labelled_by(l.id);
-                ui.end_row();
-            }
+            loading_segment_ui(ui, seg);
             view.segment = *seg;
         }
     });
+}
+
+/// The up axis row.
+fn loading_up_axis_ui(ui: &mut egui::Ui, up: &mut UpAxis) {
+    ui.label("up axis");
+    ui.horizontal(|ui| {
+        ui.radio_value(up, UpAxis::ZUp, "z")
+            .on_hover_text("z up: ROS (REP 103), Foxglove");
+        ui.radio_value(up, UpAxis::YUp, "y (OpenVR)")
+            .on_hover_text("y up: OpenVR's native frame, turned to z up");
+    });
+    ui.end_row();
+}
+
+/// The fixed frame row: `text` as typed, applied to `fixed_frame` on Enter.
+fn loading_fixed_frame_ui(ui: &mut egui::Ui, text: &mut String, fixed_frame: &mut Option<String>) {
+    let l = ui.label("fixed frame");
+    let typed = ui
+        .add(
+            egui::TextEdit::singleline(text)
+                .hint_text("each transform's parent (or: world)")
+                .desired_width(160.0),
+        )
+        .labelled_by(l.id)
+        .on_hover_text(
+            "express every TF frame in this frame, composing /tf and /tf_static; Enter \
+             applies",
+        );
+    if typed.lost_focus() {
+        let f = text.trim();
+        *fixed_frame = (!f.is_empty()).then(|| f.to_owned());
+    } else if !typed.has_focus() {
+        *text = fixed_frame.clone().unwrap_or_default();
+    }
+    ui.end_row();
+}
+
+/// The least movement row (`min_extent_m` shown in millimetres).
+fn loading_min_extent_ui(ui: &mut egui::Ui, min_extent_m: &mut f64) {
+    let l = ui.label("least movement");
+    let mut mm = *min_extent_m * 1e3;
+    if ui
+        .add(
+            egui::DragValue::new(&mut mm)
+                .speed(0.5)
+                .range(0.0..=1000.0)
+                .suffix(" mm"),
+        )
+        .labelled_by(l.id)
+        .on_hover_text("a stream whose positions span less than this does not move: skipped")
+        .changed()
+    {
+        *min_extent_m = mm * 1e-3;
+    }
+    ui.end_row();
+}
+
+/// The "a demo is" row: a topic, a file or a segment (with `segment`'s thresholds).
+fn loading_grouping_ui(ui: &mut egui::Ui, demos: &mut Grouping, segment: SegmentSettings) {
+    ui.label("a demo is");
+    ui.horizontal(|ui| {
+        let segmented = matches!(*demos, Grouping::Segmented(_));
+        if ui
+            .radio(*demos == Grouping::PerTopic, "a topic")
+            .on_hover_text("one per topic, TF child frame or pose index")
+            .clicked()
+        {
+            *demos = Grouping::PerTopic;
+        }
+        if ui
+            .radio(*demos == Grouping::PerFile, "a file")
+            .on_hover_text("each file's stream that moves most")
+            .clicked()
+        {
+            *demos = Grouping::PerFile;
+        }
+        if ui
+            .radio(segmented, "a segment")
+            .on_hover_text("continuous recordings cut at rest periods")
+            .clicked()
+        {
+            *demos = Grouping::Segmented(segment);
+        }
+    });
+    ui.end_row();
+}
+
+/// The breaks in time row: split the stream or bridge the break.
+fn loading_gaps_ui(ui: &mut egui::Ui, gaps: &mut GapPolicy) {
+    ui.label("breaks in time");
+    ui.horizontal(|ui| {
+        ui.radio_value(gaps, GapPolicy::Split, "split")
+            .on_hover_text(
+                "a clock jump or a dropout (over max(0.1 s, 10 intervals)) splits the \
+                 stream: each part is a demo",
+            );
+        ui.radio_value(gaps, GapPolicy::Keep, "bridge")
+            .on_hover_text("keep the stream whole across it (a warning names it)");
+    });
+    ui.end_row();
+}
+
+/// The segmentation thresholds' rows.
+fn loading_segment_ui(ui: &mut egui::Ui, seg: &mut SegmentSettings) {
+    let rows: [(&str, &mut f64, f64, &str); 3] = [
+        ("rest speed", &mut seg.rest_speed, 0.005, " m/s"),
+        ("shortest rest", &mut seg.min_rest_s, 0.01, " s"),
+        ("shortest demo", &mut seg.min_segment_s, 0.01, " s"),
+    ];
+    for (name, value, speed, unit) in rows {
+        let l = ui.label(name);
+        ui.add(
+            egui::DragValue::new(value)
+                .speed(speed)
+                .range(0.001..=100.0)
+                .suffix(unit),
+        )
+        .labelled_by(l.id);
+        ui.end_row();
+    }
 }
 
 /// A comma-separated list typed into one field, applied on Enter or when

@@ -11,9 +11,9 @@ use eframe::egui::{self, Color32};
 use egui_plot::{Line, Plot, PlotPoints};
 
 use super::super::commands::Command;
-use super::super::view_state::ViewState;
+use super::super::view_state::{RlChoices, ViewState};
 use super::rl_table::runs_table;
-use crate::session::{self, RlRequest, RlRun, Session, Settings};
+use crate::session::{self, RlProgress, RlRequest, RlRun, Session, Settings};
 
 /// Seeds per gain set in a comparison.
 const COMPARE_SEEDS: u64 = 3;
@@ -38,12 +38,30 @@ pub fn rl_ui(
     view: &mut ViewState,
     out: &mut Vec<Command>,
 ) {
+    rl_gains_ui(ui, &mut view.rl);
+    rl_options_ui(ui, &mut view.rl);
+    let run = session.rl();
+    let running = run.is_some_and(|(_, p)| !p.done);
+    rl_buttons_ui(ui, session, s, view, running, out);
+    let Some((request, p)) = run else {
+        ui.weak("Trains on the demo shown in the plots.");
+        return;
+    };
+    let Some(current) = request.runs.get(p.run) else {
+        return;
+    };
+    rl_progress_ui(ui, request, current, p);
+    rl_outcome_ui(ui, p);
+    rl_returns_ui(ui, request, p);
+}
+
+/// The gains combo, the decisions to train and the seed.
+fn rl_gains_ui(ui: &mut egui::Ui, c: &mut RlChoices) {
     let names: Vec<String> = ["operating point", "extracted"]
         .into_iter()
         .map(str::to_owned)
         .chain(PAPER_PRESETS.iter().map(|p| p.name.to_owned()))
         .collect();
-    let c = &mut view.rl;
     egui::ComboBox::from_label("gains")
         .selected_text(names.get(c.gains).cloned().unwrap_or_default())
         .show_ui(ui, |ui| {
@@ -62,6 +80,10 @@ pub fn rl_ui(
         let l = ui.label("seed");
         ui.add(egui::DragValue::new(&mut c.seed)).labelled_by(l.id);
     });
+}
+
+/// The environment's options: action mode, decisions per episode, exploration.
+fn rl_options_ui(ui: &mut egui::Ui, c: &mut RlChoices) {
     // Wrapped: the two combos are wider than the side panel's default.
     ui.horizontal_wrapped(|ui| {
         egui::ComboBox::from_label("action")
@@ -96,8 +118,17 @@ pub fn rl_ui(
                  (default), or of its fitted forcing term (which grows with K/M)",
             );
     });
-    let run = session.rl();
-    let running = run.is_some_and(|(_, p)| !p.done);
+}
+
+/// The Train, Compare and Cancel buttons.
+fn rl_buttons_ui(
+    ui: &mut egui::Ui,
+    session: &Session,
+    s: &Settings,
+    view: &ViewState,
+    running: bool,
+    out: &mut Vec<Command>,
+) {
     ui.horizontal(|ui| {
         let gains = chosen_gains(session, s, view.rl.gains);
         let can = session.model().is_some() && gains.is_some() && !running;
@@ -147,13 +178,10 @@ pub fn rl_ui(
             out.push(session::Command::CancelRl.into());
         }
     });
-    let Some((request, p)) = run else {
-        ui.weak("Trains on the demo shown in the plots.");
-        return;
-    };
-    let Some(current) = request.runs.get(p.run) else {
-        return;
-    };
+}
+
+/// The run under way (`current` of `request`) and the progress bar.
+fn rl_progress_ui(ui: &mut egui::Ui, request: &RlRequest, current: &RlRun, p: &RlProgress) {
     let of = if request.runs.len() > 1 {
         format!("run {}/{} · ", p.run + 1, request.runs.len())
     } else {
@@ -178,6 +206,10 @@ pub fn rl_ui(
             p.seconds
         )),
     );
+}
+
+/// The policy's goal error, its first reach, divergence and why training stopped.
+fn rl_outcome_ui(ui: &mut egui::Ui, p: &RlProgress) {
     if let Some(g) = &p.greedy {
         let reached = g.final_error <= REACHED_M;
         ui.colored_label(
@@ -211,6 +243,10 @@ pub fn rl_ui(
     if let Some(why) = &p.stopped {
         ui.colored_label(Color32::from_rgb(240, 110, 110), why);
     }
+}
+
+/// The reward curves and, in a comparison, the table of finished runs.
+fn rl_returns_ui(ui: &mut egui::Ui, request: &RlRequest, p: &RlProgress) {
     let curve = |returns: &[f64]| -> PlotPoints<'static> {
         returns
             .iter()

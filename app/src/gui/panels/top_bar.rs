@@ -91,10 +91,10 @@ fn export_menu(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Command>) {
         }
     };
     let maps = session.shown().is_some();
-    item(ui, maps, "J map (PNG)", Export::Map(Map::J));
-    item(ui, maps, "sum d map (PNG)", Export::Map(Map::DSum));
-    item(ui, maps, "S map (PNG)", Export::Map(Map::S));
-    item(ui, maps, "a_peak map (PNG)", Export::Map(Map::APeak));
+    for map in Map::all() {
+        let label = format!("{} map (PNG)", map.label());
+        item(ui, maps, &label, Export::Map(map));
+    }
     let model = session.model().is_some();
     item(ui, model, "Gains and Table I (JSON)", Export::ReportJson);
     item(ui, model, "Table I (CSV)", Export::TableCsv);

@@ -164,17 +164,40 @@ impl View3d {
             return None;
         }
         let frame = Frame::of(model.demos())?;
-        if self.frame != Some(frame) || self.camera.is_none() {
-            self.frame = Some(frame);
+        let (camera, moved) = self.steer_camera(ui, &response, rect, &frame, overlay);
+        let drawn = Drawn {
+            model,
+            regen,
+            selected,
+            t,
+            learned,
+            overlay,
+        };
+        let ppp = ui.ctx().pixels_per_point();
+        let view_proj = self.scene_ui(&painter, rect, ppp, &frame, &camera, &drawn);
+        view3d_labels_ui(&painter, rect, &frame, view_proj, &drawn);
+        moved
+    }
+
+    /// Fits the camera to `frame`, then lets the pointer move a handle or the camera.
+    fn steer_camera(
+        &mut self,
+        ui: &egui::Ui,
+        response: &egui::Response,
+        rect: egui::Rect,
+        frame: &Frame,
+        overlay: Option<&GenOverlay<'_>>,
+    ) -> (OrbitCamera, Option<HandleMove>) {
+        if self.frame != Some(*frame) || self.camera.is_none() {
+            self.frame = Some(*frame);
             self.camera = Some(OrbitCamera::fit(&frame.bounds, frame.motion));
         }
         let mut camera = self
             .camera
             .unwrap_or_else(|| OrbitCamera::fit(&frame.bounds, frame.motion));
-        let aspect = rect.width() / rect.height().max(1.0);
         let delta = Vec2::new(response.drag_delta().x, response.drag_delta().y);
         let moved = match overlay {
-            Some(ov) => self.drag_handle(ui, &response, rect, &camera, &frame, ov),
+            Some(ov) => self.drag_handle(ui, response, rect, &camera, frame, ov),
             None => {
                 self.dragging = None;
                 None
@@ -201,21 +224,33 @@ impl View3d {
             camera = OrbitCamera::fit(&frame.bounds, frame.motion);
         }
         self.camera = Some(camera);
+        (camera, moved)
+    }
 
-        let ppp = ui.ctx().pixels_per_point();
-        let n = model.demos().len();
+    /// The scene's segments in a paint callback; returns the view-projection.
+    fn scene_ui(
+        &mut self,
+        painter: &egui::Painter,
+        rect: egui::Rect,
+        ppp: f32,
+        frame: &Frame,
+        camera: &OrbitCamera,
+        drawn: &Drawn<'_>,
+    ) -> glam::Mat4 {
+        let aspect = rect.width() / rect.height().max(1.0);
+        let n = drawn.model.demos().len();
         self.visible.resize(n, true);
         let colours: Vec<[u8; 3]> = (0..n).map(demo_colour).collect();
         let input = scene::SceneInput {
-            demos: model.demos(),
-            regen: if self.show_regen { regen } else { &[] },
+            demos: drawn.model.demos(),
+            regen: if self.show_regen { drawn.regen } else { &[] },
             visible: &self.visible,
-            selected,
-            t,
+            selected: drawn.selected,
+            t: drawn.t,
             colours: &colours,
             pixels_per_point: ppp,
-            learned,
-            generalised: overlay.map(|ov| SceneGen {
+            learned: drawn.learned,
+            generalised: drawn.overlay.map(|ov| SceneGen {
                 path: ov.path,
                 band: ov.band,
                 start: ov.start,
@@ -226,10 +261,10 @@ impl View3d {
                 }),
             }),
         };
-        let segments = Arc::new(scene::build(&frame, &input));
+        let segments = Arc::new(scene::build(frame, &input));
         let view_proj = camera.view_proj(aspect);
         let to_screen = |p: glam::Vec3| project(view_proj, rect, p);
-        self.handles_on_screen = overlay.and_then(|ov| {
+        self.handles_on_screen = drawn.overlay.and_then(|ov| {
             let screen = |p: [f64; 3]| to_screen(frame.local(p));
             Some([screen(ov.start)?, screen(ov.goal)?])
         });
@@ -242,48 +277,7 @@ impl View3d {
             rect,
             gpu::DrawLines { uniforms, segments },
         ));
-
-        // Axis names and the grid step, as text over the picture.
-        let step = frame.grid_step();
-        let o = frame.axes_origin();
-        for (axis, name) in [
-            (glam::Vec3::X, "x"),
-            (glam::Vec3::Y, "y"),
-            (glam::Vec3::Z, "z"),
-        ] {
-            if let Some(pos) = to_screen(o + axis * step * 1.25) {
-                painter.text(
-                    pos,
-                    Align2::CENTER_CENTER,
-                    name,
-                    FontId::monospace(12.0),
-                    Color32::LIGHT_GRAY,
-                );
-            }
-        }
-        let hint = |pos, align, text: String| {
-            painter.text(pos, align, text, FontId::proportional(11.0), Color32::GRAY);
-        };
-        hint(
-            rect.left_top() + egui::vec2(6.0, 6.0),
-            Align2::LEFT_TOP,
-            format!(
-                "solid: demo · dashed: DMP · gold: RL{}{} · grid {:.0} mm",
-                if learned.is_some() { "" } else { " (none yet)" },
-                if overlay.is_some() {
-                    " · white: new target (drag start/goal, Shift: up)"
-                } else {
-                    ""
-                },
-                step * 1000.0
-            ),
-        );
-        hint(
-            rect.left_bottom() + egui::vec2(6.0, -6.0),
-            Align2::LEFT_BOTTOM,
-            "drag: orbit · right-drag: pan · wheel: zoom · double-click: reset".to_owned(),
-        );
-        moved
+        view_proj
     }
 
     /// Grabs a handle of `ov` when a drag starts on it, and moves it while
@@ -338,6 +332,72 @@ impl View3d {
         let to = std::array::from_fn(|a| frame.origin[a] + f64::from(new_local[a]));
         Some(HandleMove { handle, to })
     }
+}
+
+/// What [`View3d::show`] draws besides the scene's frame: the model, the
+/// regenerations, the selection, the learned path and the overlay.
+struct Drawn<'a> {
+    model: &'a Model,
+    regen: &'a [Rollout],
+    selected: usize,
+    t: f64,
+    learned: Option<(usize, &'a [[f64; 3]])>,
+    overlay: Option<&'a GenOverlay<'a>>,
+}
+
+/// The axis names and the hints over the picture.
+fn view3d_labels_ui(
+    painter: &egui::Painter,
+    rect: egui::Rect,
+    frame: &Frame,
+    view_proj: glam::Mat4,
+    drawn: &Drawn<'_>,
+) {
+    let to_screen = |p: glam::Vec3| project(view_proj, rect, p);
+    // Axis names and the grid step, as text over the picture.
+    let step = frame.grid_step();
+    let o = frame.axes_origin();
+    for (axis, name) in [
+        (glam::Vec3::X, "x"),
+        (glam::Vec3::Y, "y"),
+        (glam::Vec3::Z, "z"),
+    ] {
+        if let Some(pos) = to_screen(o + axis * step * 1.25) {
+            painter.text(
+                pos,
+                Align2::CENTER_CENTER,
+                name,
+                FontId::monospace(12.0),
+                Color32::LIGHT_GRAY,
+            );
+        }
+    }
+    let hint = |pos, align, text: String| {
+        painter.text(pos, align, text, FontId::proportional(11.0), Color32::GRAY);
+    };
+    hint(
+        rect.left_top() + egui::vec2(6.0, 6.0),
+        Align2::LEFT_TOP,
+        format!(
+            "solid: demo · dashed: DMP · gold: RL{}{} · grid {:.0} mm",
+            if drawn.learned.is_some() {
+                ""
+            } else {
+                " (none yet)"
+            },
+            if drawn.overlay.is_some() {
+                " · white: new target (drag start/goal, Shift: up)"
+            } else {
+                ""
+            },
+            step * 1000.0
+        ),
+    );
+    hint(
+        rect.left_bottom() + egui::vec2(6.0, -6.0),
+        Align2::LEFT_BOTTOM,
+        "drag: orbit · right-drag: pan · wheel: zoom · double-click: reset".to_owned(),
+    );
 }
 
 /// Where scene point `p` lands in `rect` under `view_proj` (screen points);

@@ -31,6 +31,9 @@ const MAX_PATH_POINTS: usize = 250;
 const WIDTH: f32 = 2.0;
 const WIDTH_SELECTED: f32 = 3.5;
 
+/// The dark rims of the markers and handles.
+const DARK: [f32; 4] = [0.08, 0.08, 0.1, 1.0];
+
 /// The demo paths and their regenerations, in world coordinates (metres).
 pub struct SceneInput<'a> {
     /// The prepared demos.
@@ -225,10 +228,72 @@ fn at_time(points: &[Vec3], t: f64) -> Option<Vec3> {
 
 /// All segments of the scene in `frame`.
 pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
-    let ppp = input.pixels_per_point;
     let mut out = SegmentList::default();
+    ground_and_axes(&mut out, frame, input.pixels_per_point);
 
-    // Ground grid and axes.
+    // Demos, then regenerations on top, then markers.
+    let demo_paths: Vec<Vec<Vec3>> = input
+        .demos
+        .iter()
+        .map(|d| d.y_raw.iter().map(|p| frame.local(add(d.p0, *p))).collect())
+        .collect();
+    let regen_paths: Vec<Vec<Vec3>> = input
+        .demos
+        .iter()
+        .zip(input.regen)
+        .map(|(d, r)| r.y.iter().map(|p| frame.local(add(d.p0, *p))).collect())
+        .collect();
+    demo_paths_and_markers(&mut out, frame, input, &demo_paths, &regen_paths);
+
+    // A run at a new target: white, its band faint, its handles on top.
+    if let Some(g) = &input.generalised {
+        generalised_run(&mut out, frame, g, input);
+    }
+
+    // The time cursor on the selected demo and its regeneration.
+    let sel = input.selected;
+    if input.shown(sel) {
+        let ppp = input.pixels_per_point;
+        let c = rgba(input.colour_of(sel), 1.0);
+        for path in [demo_paths.get(sel), regen_paths.get(sel)]
+            .into_iter()
+            .flatten()
+        {
+            if let Some(p) = at_time(path, input.t) {
+                out.dot(p, [1.0, 1.0, 1.0, 1.0], 12.0 * ppp);
+                out.dot(p, c, 8.0 * ppp);
+            }
+        }
+    }
+    out.segments
+}
+
+impl SceneInput<'_> {
+    /// Whether demo `i` is shown.
+    fn shown(&self, i: usize) -> bool {
+        self.visible.get(i).copied().unwrap_or(true)
+    }
+
+    /// The colour of demo `i`.
+    fn colour_of(&self, i: usize) -> [u8; 3] {
+        self.colours
+            .get(i % self.colours.len().max(1))
+            .copied()
+            .unwrap_or([200, 200, 200])
+    }
+
+    /// The width of demo `i`'s paths in physical pixels (wider when selected).
+    fn width_of(&self, i: usize) -> f32 {
+        (if i == self.selected {
+            WIDTH_SELECTED
+        } else {
+            WIDTH
+        }) * self.pixels_per_point
+    }
+}
+
+/// The ground grid and the axes, `ppp` pixels per point.
+fn ground_and_axes(out: &mut SegmentList, frame: &Frame, ppp: f32) {
     let step = frame.grid_step();
     let o = frame.axes_origin();
     let b = frame.bounds;
@@ -260,35 +325,32 @@ pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
     ] {
         out.line(o, o + axis * step, colour, 2.5 * ppp);
     }
+}
 
-    // Demos, then regenerations on top, then markers.
-    let shown = |i: usize| input.visible.get(i).copied().unwrap_or(true);
-    let colour_of = |i: usize| {
-        input
-            .colours
-            .get(i % input.colours.len().max(1))
-            .copied()
-            .unwrap_or([200, 200, 200])
-    };
-    let width_of = |i: usize| if i == input.selected { WIDTH_SELECTED } else { WIDTH } * ppp;
+/// The demos, their regenerations (dashed), the learned path and the start and goal markers.
+fn demo_paths_and_markers(
+    out: &mut SegmentList,
+    frame: &Frame,
+    input: &SceneInput<'_>,
+    demo_paths: &[Vec<Vec3>],
+    regen_paths: &[Vec<Vec3>],
+) {
+    let ppp = input.pixels_per_point;
     let dash = frame.bounds.radius() / 30.0;
-    let demo_paths: Vec<Vec<Vec3>> = input
-        .demos
+    for (i, path) in demo_paths
         .iter()
-        .map(|d| d.y_raw.iter().map(|p| frame.local(add(d.p0, *p))).collect())
-        .collect();
-    let regen_paths: Vec<Vec<Vec3>> = input
-        .demos
-        .iter()
-        .zip(input.regen)
-        .map(|(d, r)| r.y.iter().map(|p| frame.local(add(d.p0, *p))).collect())
-        .collect();
-    for (i, path) in demo_paths.iter().enumerate().filter(|(i, _)| shown(*i)) {
-        out.path(path, rgba(colour_of(i), 1.0), width_of(i), 0.0);
+        .enumerate()
+        .filter(|(i, _)| input.shown(*i))
+    {
+        out.path(path, rgba(input.colour_of(i), 1.0), input.width_of(i), 0.0);
     }
-    for (i, path) in regen_paths.iter().enumerate().filter(|(i, _)| shown(*i)) {
-        let c = lighter(colour_of(i), 0.45);
-        out.path(path, rgba(c, 0.95), width_of(i), dash);
+    for (i, path) in regen_paths
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| input.shown(*i))
+    {
+        let c = lighter(input.colour_of(i), 0.45);
+        out.path(path, rgba(c, 0.95), input.width_of(i), dash);
     }
     if let Some((i, path)) = input.learned
         && let Some(d) = input.demos.get(i)
@@ -296,67 +358,57 @@ pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
         let points: Vec<Vec3> = path.iter().map(|p| frame.local(add(d.p0, *p))).collect();
         out.path(&points, [1.0, 0.84, 0.3, 1.0], 3.0 * ppp, 0.0);
     }
-    let dark = [0.08, 0.08, 0.1, 1.0];
-    for (i, d) in input.demos.iter().enumerate().filter(|(i, _)| shown(*i)) {
-        let c = rgba(colour_of(i), 1.0);
+    for (i, d) in input
+        .demos
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| input.shown(*i))
+    {
+        let c = rgba(input.colour_of(i), 1.0);
         let start = frame.local(d.p0);
         let goal = frame.local(add(d.p0, d.goal));
         // Start: a filled disc; goal: a ring.
-        out.dot(start, dark, 10.0 * ppp);
+        out.dot(start, DARK, 10.0 * ppp);
         out.dot(start, c, 7.0 * ppp);
         out.dot(goal, c, 11.0 * ppp);
-        out.dot(goal, dark, 5.0 * ppp);
+        out.dot(goal, DARK, 5.0 * ppp);
     }
+}
 
-    // A run at a new target: white, its band faint, its handles on top.
-    if let Some(g) = &input.generalised {
-        let local = |p: &[f64; 3]| frame.local(*p);
-        let path: Vec<Vec3> = g.path.iter().map(local).collect();
-        if g.band.len() == g.path.len() {
-            for sign in [-1.0, 1.0] {
-                let edge: Vec<Vec3> = g
-                    .path
-                    .iter()
-                    .zip(g.band)
-                    .map(|(p, b)| local(&std::array::from_fn(|a| p[a] + sign * b[a])))
-                    .collect();
-                out.path(&edge, [1.0, 1.0, 1.0, 0.35], 1.0 * ppp, dash);
-            }
-        }
-        out.path(&path, [0.97, 0.97, 0.97, 1.0], 3.0 * ppp, 0.0);
-        let handle = |i: usize| {
-            if g.active == Some(i) {
-                [1.0, 0.85, 0.3, 1.0]
-            } else {
-                [0.97, 0.97, 0.97, 1.0]
-            }
-        };
-        let (start, goal) = (frame.local(g.start), frame.local(g.goal));
-        out.dot(start, dark, 13.0 * ppp);
-        out.dot(start, handle(0), 10.0 * ppp);
-        out.dot(goal, handle(1), 16.0 * ppp);
-        out.dot(goal, dark, 8.0 * ppp);
-        if let Some(p) = at_time(&path, input.t) {
-            out.dot(p, [0.1, 0.1, 0.1, 1.0], 12.0 * ppp);
-            out.dot(p, [0.97, 0.97, 0.97, 1.0], 8.0 * ppp);
+/// A run at a new target `g`: its path, its band, its handles and its time cursor.
+fn generalised_run(out: &mut SegmentList, frame: &Frame, g: &SceneGen<'_>, input: &SceneInput<'_>) {
+    let ppp = input.pixels_per_point;
+    let dash = frame.bounds.radius() / 30.0;
+    let local = |p: &[f64; 3]| frame.local(*p);
+    let path: Vec<Vec3> = g.path.iter().map(local).collect();
+    if g.band.len() == g.path.len() {
+        for sign in [-1.0, 1.0] {
+            let edge: Vec<Vec3> = g
+                .path
+                .iter()
+                .zip(g.band)
+                .map(|(p, b)| local(&std::array::from_fn(|a| p[a] + sign * b[a])))
+                .collect();
+            out.path(&edge, [1.0, 1.0, 1.0, 0.35], 1.0 * ppp, dash);
         }
     }
-
-    // The time cursor on the selected demo and its regeneration.
-    let sel = input.selected;
-    if shown(sel) {
-        let c = rgba(colour_of(sel), 1.0);
-        for path in [demo_paths.get(sel), regen_paths.get(sel)]
-            .into_iter()
-            .flatten()
-        {
-            if let Some(p) = at_time(path, input.t) {
-                out.dot(p, [1.0, 1.0, 1.0, 1.0], 12.0 * ppp);
-                out.dot(p, c, 8.0 * ppp);
-            }
+    out.path(&path, [0.97, 0.97, 0.97, 1.0], 3.0 * ppp, 0.0);
+    let handle = |i: usize| {
+        if g.active == Some(i) {
+            [1.0, 0.85, 0.3, 1.0]
+        } else {
+            [0.97, 0.97, 0.97, 1.0]
         }
+    };
+    let (start, goal) = (frame.local(g.start), frame.local(g.goal));
+    out.dot(start, DARK, 13.0 * ppp);
+    out.dot(start, handle(0), 10.0 * ppp);
+    out.dot(goal, handle(1), 16.0 * ppp);
+    out.dot(goal, DARK, 8.0 * ppp);
+    if let Some(p) = at_time(&path, input.t) {
+        out.dot(p, [0.1, 0.1, 0.1, 1.0], 12.0 * ppp);
+        out.dot(p, [0.97, 0.97, 0.97, 1.0], 8.0 * ppp);
     }
-    out.segments
 }
 
 #[cfg(test)]

@@ -1,0 +1,147 @@
+//! The registry of recording formats: each file format dmpscope reads is
+//! declared once here (its name, the file-name suffixes and magic bytes
+//! that identify it, its reader, and whether folders are walked for it),
+//! and every place that picks a reader asks this table: [`super::source`]
+//! for paths and bytes (the CLI, the app, the browser), folder walking
+//! ([`super::rosbag2`]) and the app's file dialogs. Adding a format is an
+//! entry here and its reader.
+
+use std::path::Path;
+
+/// How a format's files become streams.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reader {
+    /// MCAP, read in pieces by the sans-IO reader.
+    Mcap,
+    /// MCAP compressed as a whole file with zstd (rosbag2's file
+    /// compression), decompressed as it is read.
+    ZstdMcap,
+    /// Plain `t,x,y,z` text.
+    Csv,
+}
+
+/// A file format dmpscope reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Format {
+    /// Its name in messages.
+    pub name: &'static str,
+    /// File-name suffixes that identify it (lower case, with the dot).
+    pub suffixes: &'static [&'static str],
+    /// The bytes its files start with (empty: none).
+    pub magic: &'static [u8],
+    /// Its reader.
+    pub reader: Reader,
+    /// The suffixes of its files that a folder of recordings is walked
+    /// for (empty: none).
+    pub walk: &'static [&'static str],
+}
+
+/// The MCAP magic: every MCAP file starts with it.
+pub const MCAP_MAGIC: &[u8] = b"\x89MCAP0\r\n";
+
+/// Every format, in the order they are tried by name.
+pub const FORMATS: [Format; 3] = [
+    Format {
+        name: "MCAP",
+        suffixes: &[".mcap"],
+        magic: MCAP_MAGIC,
+        reader: Reader::Mcap,
+        walk: &[".mcap"],
+    },
+    Format {
+        name: "zstd-compressed MCAP",
+        suffixes: &[".mcap.zstd", ".mcap.zst", ".zstd", ".zst"],
+        magic: &[0x28, 0xb5, 0x2f, 0xfd],
+        reader: Reader::ZstdMcap,
+        walk: &[".mcap.zstd", ".mcap.zst"],
+    },
+    Format {
+        name: "CSV",
+        suffixes: &[".csv"],
+        magic: &[],
+        reader: Reader::Csv,
+        walk: &[],
+    },
+];
+
+/// The format a file name says (its suffix, case-insensitive).
+pub fn by_name(name: &str) -> Option<&'static Format> {
+    let name = name.to_ascii_lowercase();
+    FORMATS
+        .iter()
+        .find(|f| f.suffixes.iter().any(|s| name.ends_with(s)))
+}
+
+/// The format of a file: by its name, else by its first bytes, else MCAP
+/// (whose reader then says what the file is not).
+pub fn detect(name: &str, head: &[u8]) -> &'static Format {
+    by_name(name)
+        .or_else(|| {
+            FORMATS
+                .iter()
+                .find(|f| !f.magic.is_empty() && head.starts_with(f.magic))
+        })
+        .unwrap_or(&FORMATS[0])
+}
+
+/// Whether a file in a folder of recordings is read.
+pub fn walked(path: &Path) -> bool {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    FORMATS
+        .iter()
+        .flat_map(|f| f.walk.iter())
+        .any(|s| name.ends_with(s))
+}
+
+/// The extensions an open dialog offers (without the dot), with
+/// `metadata.yaml`'s, which stands for its rosbag2 folder.
+pub fn dialog_extensions() -> Vec<&'static str> {
+    let mut out: Vec<&'static str> = FORMATS
+        .iter()
+        .flat_map(|f| f.suffixes.iter())
+        .filter_map(|s| s.rsplit('.').next())
+        .collect();
+    out.push("yaml");
+    out.dedup();
+    let mut seen = Vec::new();
+    out.retain(|e| {
+        let new = !seen.contains(e);
+        seen.push(*e);
+        new
+    });
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_and_magic_pick_the_reader() {
+        assert_eq!(by_name("a/B.MCAP").map(|f| f.reader), Some(Reader::Mcap));
+        assert_eq!(by_name("bag_0.mcap.zstd").map(|f| f.reader), Some(Reader::ZstdMcap));
+        assert_eq!(by_name("t.csv").map(|f| f.reader), Some(Reader::Csv));
+        assert_eq!(by_name("notes.txt"), None);
+        assert_eq!(detect("upload", MCAP_MAGIC).reader, Reader::Mcap);
+        assert_eq!(detect("upload", &[0x28, 0xb5, 0x2f, 0xfd, 0]).reader, Reader::ZstdMcap);
+        assert_eq!(detect("notes.txt", b"hello").reader, Reader::Mcap);
+    }
+
+    #[test]
+    fn folders_walk_mcap_files_plain_or_compressed_only() {
+        assert!(walked(Path::new("/x/run_0.mcap")));
+        assert!(walked(Path::new("/x/run_0.MCAP.zstd")));
+        assert!(walked(Path::new("/x/run_0.mcap.zst")));
+        assert!(!walked(Path::new("/x/notes.zst")));
+        assert!(!walked(Path::new("/x/t.csv")));
+        assert!(!walked(Path::new("/x/metadata.yaml")));
+    }
+
+    #[test]
+    fn dialogs_offer_each_extension_once() {
+        assert_eq!(dialog_extensions(), ["mcap", "zstd", "zst", "csv", "yaml"]);
+    }
+}
