@@ -134,7 +134,10 @@ impl Dialogs {
                     pick_folder(dialog).await
                 } else {
                     dialog
-                        .add_filter("recordings", &dmpscope_core::io::formats::dialog_extensions())
+                        .add_filter(
+                            "recordings",
+                            &dmpscope_core::io::formats::dialog_extensions(),
+                        )
                         .add_filter("all files", &["*"])
                         .pick_files()
                         .await

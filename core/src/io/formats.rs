@@ -122,11 +122,17 @@ mod tests {
     #[test]
     fn names_and_magic_pick_the_reader() {
         assert_eq!(by_name("a/B.MCAP").map(|f| f.reader), Some(Reader::Mcap));
-        assert_eq!(by_name("bag_0.mcap.zstd").map(|f| f.reader), Some(Reader::ZstdMcap));
+        assert_eq!(
+            by_name("bag_0.mcap.zstd").map(|f| f.reader),
+            Some(Reader::ZstdMcap)
+        );
         assert_eq!(by_name("t.csv").map(|f| f.reader), Some(Reader::Csv));
         assert_eq!(by_name("notes.txt"), None);
         assert_eq!(detect("upload", MCAP_MAGIC).reader, Reader::Mcap);
-        assert_eq!(detect("upload", &[0x28, 0xb5, 0x2f, 0xfd, 0]).reader, Reader::ZstdMcap);
+        assert_eq!(
+            detect("upload", &[0x28, 0xb5, 0x2f, 0xfd, 0]).reader,
+            Reader::ZstdMcap
+        );
         assert_eq!(detect("notes.txt", b"hello").reader, Reader::Mcap);
     }
 
