@@ -124,6 +124,7 @@ impl DmpApp {
                 Ok((name, bytes)) => self.dialogs.save(&name, bytes, wake),
                 Err(e) => self.session.apply(session::Command::Say(Notice::error(e))),
             },
+            Command::Select(i) => self.view.selected = i,
         }
     }
 
@@ -294,10 +295,16 @@ impl eframe::App for DmpApp {
         self.serve_test_hooks(&ctx);
 
         let before = self.settings.clone();
-        let (session, s, view) = (&self.session, &mut self.settings, &mut self.view);
-        let mut commands = Vec::new();
+        // One context for every panel: they change the settings and the
+        // views' state in place and push what else they ask for.
+        let mut cx = panels::PanelCtx {
+            session: &self.session,
+            settings: &mut self.settings,
+            view: &mut self.view,
+            out: Vec::new(),
+        };
         egui::Panel::top("top").show(ui, |ui| {
-            commands.extend(panels::top_bar_ui(ui, session, s, view));
+            panels::top_bar_ui(ui, &mut cx);
         });
         egui::Panel::left("side")
             .default_size(330.0)
@@ -305,7 +312,7 @@ impl eframe::App for DmpApp {
             .show(ui, |ui| {
                 ui.set_min_size(ui.available_size());
                 egui::ScrollArea::vertical().show(ui, |ui| {
-                    commands.extend(panels::side_ui(ui, session, s, view));
+                    panels::side_ui(ui, &mut cx);
                 });
             });
         // Panels claim their whole size, so the layout does not depend on
@@ -315,18 +322,19 @@ impl eframe::App for DmpApp {
             .min_size(340.0)
             .show(ui, |ui| {
                 ui.set_min_size(ui.available_size());
-                commands.extend(panels::plots_ui(ui, session, s, view));
+                panels::plots_ui(ui, &mut cx);
             });
         egui::Panel::bottom("table")
             .default_size(200.0)
             .min_size(150.0)
             .show(ui, |ui| {
                 ui.set_min_size(ui.available_size());
-                commands.extend(panels::table_ui(ui, session, s, view));
+                panels::table_ui(ui, &mut cx);
             });
         egui::CentralPanel::default().show(ui, |ui| {
-            commands.extend(panels::central_ui(ui, session, s, view));
+            panels::central_ui(ui, &mut cx);
         });
+        let commands = cx.out;
         let hover_moved = self.view.end_hover();
         let changed = !commands.is_empty() || self.settings != before;
         if hover_moved {

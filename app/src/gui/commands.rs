@@ -1,6 +1,6 @@
 //! What panels ask for: session commands, and what only the app can do
-//! (dialogs, exports). Panels return them; the app applies them after the
-//! frame's layout.
+//! (dialogs, exports, the selection). Panels push them; the app applies
+//! them after the frame's layout.
 
 use crate::session;
 use dmpscope_core::Quantity;
@@ -20,6 +20,9 @@ pub enum Command {
     Browse,
     /// Save an export through the save dialog.
     Export(Export),
+    /// Select a demo (its index in the session's demos that are in the
+    /// model, as the plots' demo list counts them).
+    Select(usize),
 }
 
 impl From<session::Command> for Command {

@@ -2,7 +2,7 @@
 //! and dialogs.
 //!
 //! `app.rs` is [`DmpApp`] (settings, session, view state, dialogs) and the
-//! frame; `panels/` holds the panels, functions that return [`Command`]s;
+//! frame; `panels/` holds the panels, functions of a `PanelCtx` that push [`Command`]s;
 //! `heatmap.rs`, `plots.rs`, `gen_plots.rs`, `forcing.rs`, `tradeoff.rs` and
 //! `view3d/` (a custom wgpu pipeline) are the views; `view_state.rs` what the views remember; `file_dialog.rs` the
 //! dialogs (with the app's own browser where the system has none);

@@ -6,25 +6,23 @@ use dmpscope_core::presets::PAPER_PRESETS;
 use dmpscope_core::quantity::{self, Quantity};
 use eframe::egui::{self, Color32};
 
-use super::super::commands::{Command, Map};
+use super::super::commands::Map;
 use super::super::heatmap::{self, MapInput, Marker};
 use super::super::view_state::ViewState;
 use super::super::view3d::{GenOverlay, Handle};
+use super::PanelCtx;
 use crate::session::{Command as SessionCommand, Session, Settings, Shown, Status};
 
 /// The central panel.
-pub fn central_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    s: &mut Settings,
-    view: &mut ViewState,
-) -> Vec<Command> {
+pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
     let height = (ui.available_height() * 0.5).clamp(200.0, 420.0);
     match session.shown() {
-        Some(shown) => maps(ui, session, shown, s, view, height),
+        Some(shown) => maps(ui, session, shown, cx.settings, cx.view, height),
         None => status(ui, &session.status(), height),
     }
     if let Some(model) = session.model() {
+        let view = &mut *cx.view;
         view.view3d.toggles(ui, model.demos().len());
         let learned = session
             .rl()
@@ -53,10 +51,9 @@ pub fn central_ui(
                 Handle::Start => spec.target.start = Some(m.to),
                 Handle::Goal => spec.target.goal = Some(m.to),
             }
-            return vec![SessionCommand::SetGeneralise(Some(spec)).into()];
+            cx.push(SessionCommand::SetGeneralise(Some(spec)));
         }
     }
-    Vec::new()
 }
 
 /// Where the maps go while there are none: the session's status in words.

@@ -4,10 +4,9 @@
 use dmpscope_core::Level;
 use eframe::egui::{self, Color32};
 
-use super::super::commands::Command;
 use super::super::forcing::demo_colour;
-use super::super::view_state::ViewState;
-use crate::session::{self, Session};
+use super::PanelCtx;
+use crate::session;
 
 /// The colour of a message of `level`.
 pub fn level_colour(level: Level) -> Color32 {
@@ -19,15 +18,11 @@ pub fn level_colour(level: Level) -> Color32 {
 }
 
 /// The demos list and the messages.
-pub fn demos_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    view: &mut ViewState,
-    out: &mut Vec<Command>,
-) {
+pub fn demos_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
     ui.heading("Demos");
     let in_model = session.model_demos();
-    let hovered = view.hovered.and_then(|i| in_model.get(i).copied());
+    let hovered = cx.view.hovered.and_then(|i| in_model.get(i).copied());
     egui::ScrollArea::vertical()
         .id_salt("demos")
         .max_height(220.0)
@@ -57,10 +52,10 @@ pub fn demos_ui(
                 };
                 let response = ui.checkbox(&mut included, label);
                 if response.hovered() {
-                    view.hovering = model_index;
+                    cx.view.hovering = model_index;
                 }
                 if response.changed() {
-                    out.push(session::Command::SetIncluded { demo: i, included }.into());
+                    cx.push(session::Command::SetIncluded { demo: i, included });
                 }
             }
         });
@@ -75,7 +70,7 @@ pub fn demos_ui(
                 }
             });
         if ui.small_button("Clear messages").clicked() {
-            out.push(session::Command::ClearMessages.into());
+            cx.push(session::Command::ClearMessages);
         }
     }
 }

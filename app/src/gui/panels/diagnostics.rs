@@ -8,24 +8,19 @@
 use dmpscope_core::diagnostics::{DiagSettings, FLAT_DEPTH, INCONSISTENT_SHARE};
 use eframe::egui::{self, Color32};
 
-use super::super::commands::Command;
 use super::super::view_state::ViewState;
+use super::PanelCtx;
 use crate::session::{self, DiagSnapshot, Session, Settings};
 
 const WARN: Color32 = Color32::from_rgb(240, 180, 80);
 const GOOD: Color32 = Color32::from_rgb(130, 210, 130);
 
 /// The diagnostics section.
-pub fn diagnostics_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    s: &mut Settings,
-    view: &mut ViewState,
-    out: &mut Vec<Command>,
-) {
+pub fn diagnostics_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
     ui.heading("Can I trust these gains?");
     match session.diagnostics() {
-        Some(d) => snapshot_ui(ui, session, d, s, view, out),
+        Some(d) => snapshot_ui(ui, cx, d),
         None if session.extracting() || session.diagnosing() => {
             ui.horizontal(|ui| {
                 ui.spinner();
@@ -37,20 +32,15 @@ pub fn diagnostics_ui(
         }
     }
     ui.separator();
-    limit_ui(ui, session, s);
+    limit_ui(ui, session, cx.settings);
     ui.collapsing("Diagnostics settings", |ui| {
-        settings_ui(ui, &mut s.diagnostics)
+        settings_ui(ui, &mut cx.settings.diagnostics)
     });
 }
 
-fn snapshot_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    snap: &DiagSnapshot,
-    s: &mut Settings,
-    view: &mut ViewState,
-    out: &mut Vec<Command>,
-) {
+/// The diagnostics of `snap`: the depth and verdict, the balance, the S
+/// minimum, the flagged demos, the bootstrap and its progress.
+fn snapshot_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>, snap: &DiagSnapshot) {
     let d = &snap.diagnostics;
     match d.depth {
         Some(depth) if d.flat => {
@@ -89,7 +79,7 @@ fn snapshot_ui(
                 .on_hover_text("set k so that S and k sum d weigh alike over the grid")
                 .clicked()
             {
-                s.k = b;
+                cx.settings.k = b;
             }
         });
     }
@@ -100,11 +90,11 @@ fn snapshot_ui(
                 m.dm, m.km, m.s
             ));
             if ui.small_button("Go there").clicked() {
-                s.op = (m.dm, m.km);
+                cx.settings.op = (m.dm, m.km);
             }
         });
     }
-    demos_ui(ui, session, snap, view, out);
+    demos_ui(ui, cx, snap);
     bootstrap_ui(ui, snap);
     if !snap.complete() {
         ui.add(
@@ -120,38 +110,28 @@ fn snapshot_ui(
 }
 
 /// A button that excludes model demo `i` from the model (hovering it
-/// highlights the demo); the command when clicked.
-pub fn exclude_button(
-    ui: &mut egui::Ui,
-    session: &Session,
-    i: usize,
-    label: &str,
-    view: &mut ViewState,
-) -> Option<Command> {
-    let demo = *session.model_demos().get(i)?;
+/// highlights the demo); its command is pushed when clicked.
+pub fn exclude_button(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>, i: usize, label: &str) {
+    let Some(&demo) = cx.session.model_demos().get(i) else {
+        return;
+    };
     let r = ui
         .button(label)
         .on_hover_text("leave this demo out of the model");
     if r.hovered() {
-        view.hovering = Some(i);
+        cx.view.hovering = Some(i);
     }
-    r.clicked().then(|| {
-        session::Command::SetIncluded {
+    if r.clicked() {
+        cx.push(session::Command::SetIncluded {
             demo,
             included: false,
-        }
-        .into()
-    })
+        });
+    }
 }
 
 /// The flagged demos, then the leave-one-out table.
-fn demos_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    snap: &DiagSnapshot,
-    view: &mut ViewState,
-    out: &mut Vec<Command>,
-) {
+fn demos_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>, snap: &DiagSnapshot) {
+    let session = cx.session;
     let d = &snap.diagnostics;
     let n = d.demos.len();
     let flagged = d.inconsistent();
@@ -174,9 +154,9 @@ fn demos_ui(
                 ),
             );
             if r.hovered() {
-                view.hovering = Some(i);
+                cx.view.hovering = Some(i);
             }
-            out.extend(exclude_button(ui, session, i, "Exclude", view));
+            exclude_button(ui, cx, i, "Exclude");
         });
     }
     if n < 2 {
@@ -192,7 +172,7 @@ fn demos_ui(
         // (the wrapped lines above would then run past its edge).
         egui::ScrollArea::horizontal()
             .id_salt("loo scroll")
-            .show(ui, |ui| loo_table(ui, session, snap, &flagged, view));
+            .show(ui, |ui| loo_table(ui, session, snap, &flagged, cx.view));
     });
 }
 

@@ -5,10 +5,12 @@
 use dmpscope_core::presets::PAPER_PRESETS;
 use eframe::egui::{self, Color32};
 
-use crate::session::{Session, Settings};
+use super::PanelCtx;
 
 /// The gains section.
-pub fn gains_ui(ui: &mut egui::Ui, session: &Session, s: &mut Settings) {
+pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
+    let s = &mut *cx.settings;
     ui.heading("Gains");
     ui.horizontal(|ui| {
         let label = ui.label("k");

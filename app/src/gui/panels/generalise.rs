@@ -8,7 +8,7 @@ use dmpscope_core::{Model, Scaling, Target};
 use eframe::egui::{self, Color32};
 
 use super::super::commands::{Command, Export};
-use super::super::view_state::ViewState;
+use super::PanelCtx;
 use crate::session::{Command as SessionCommand, GenSource, GeneraliseSpec, Session};
 
 /// The source's own start, goal (absolute) and duration.
@@ -59,18 +59,15 @@ fn triple(ui: &mut egui::Ui, label: &str, value: [f64; 3]) -> Option<[f64; 3]> {
 }
 
 /// The section.
-pub fn generalise_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    view: &mut ViewState,
-    out: &mut Vec<Command>,
-) {
+pub fn generalise_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
     let Some(model) = session.model() else {
         ui.weak("Needs demonstrations.");
         return;
     };
     let current = session.generalise_spec().copied();
-    if generalise_switch_ui(ui, current.is_some(), view.selected, out) {
+    let selected = cx.view.selected;
+    if generalise_switch_ui(ui, current.is_some(), selected, cx) {
         return;
     }
     let Some(mut spec) = current else {
@@ -79,7 +76,7 @@ pub fn generalise_ui(
     // (A demo source follows the selected demo: `DmpApp` sees to it each
     // frame, whichever tab is open.)
     let before = spec;
-    generalise_source_ui(ui, &mut spec, view.selected);
+    generalise_source_ui(ui, &mut spec, selected);
     if spec.source != before.source {
         // A new source starts at its own target.
         spec = spec.reset();
@@ -88,10 +85,10 @@ pub fn generalise_ui(
         generalise_target_ui(ui, &mut spec, own);
     }
     generalise_result_ui(ui, session);
-    generalise_export_ui(ui, session, out);
+    generalise_export_ui(ui, cx);
     ui.weak("3D view: drag the white goal ring or start disc (Shift: height)");
     if spec != before {
-        out.push(SessionCommand::SetGeneralise(Some(spec)).into());
+        cx.push(SessionCommand::SetGeneralise(Some(spec)));
     }
 }
 
@@ -100,7 +97,7 @@ fn generalise_switch_ui(
     ui: &mut egui::Ui,
     mut on: bool,
     selected: usize,
-    out: &mut Vec<Command>,
+    cx: &mut PanelCtx<'_>,
 ) -> bool {
     if !on {
         ui.label(
@@ -116,7 +113,9 @@ fn generalise_switch_ui(
         )
         .changed()
     {
-        out.push(SessionCommand::SetGeneralise(on.then(|| GeneraliseSpec::demo(selected))).into());
+        cx.push(SessionCommand::SetGeneralise(
+            on.then(|| GeneraliseSpec::demo(selected)),
+        ));
         return true;
     }
     false
@@ -222,7 +221,8 @@ fn generalise_result_ui(ui: &mut egui::Ui, session: &Session) {
 }
 
 /// The button exporting the DMP at this target for a robot.
-fn generalise_export_ui(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Command>) {
+fn generalise_export_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
     ui.horizontal_wrapped(|ui| {
         let ok = session.generalised().is_some_and(|g| g.is_ok());
         if ui
@@ -233,7 +233,7 @@ fn generalise_export_ui(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Comm
             )
             .clicked()
         {
-            out.push(Command::Export(Export::Dmp));
+            cx.push(Command::Export(Export::Dmp));
         }
     });
 }

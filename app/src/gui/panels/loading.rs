@@ -10,12 +10,11 @@ use dmpscope_core::io::UpAxis;
 use dmpscope_core::segment::SegmentSettings;
 use eframe::egui;
 
-use super::super::view_state::ViewState;
-use crate::session::Settings;
+use super::PanelCtx;
 
 /// The Loading section.
-pub fn loading_ui(ui: &mut egui::Ui, s: &mut Settings, view: &mut ViewState) {
-    let load = &mut s.load;
+pub fn loading_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let (load, view) = (&mut cx.settings.load, &mut *cx.view);
     egui::Grid::new("loading").show(ui, |ui| {
         loading_up_axis_ui(ui, &mut load.up);
         list_field(

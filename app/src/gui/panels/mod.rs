@@ -1,10 +1,12 @@
-//! The panels: functions of the session (read only), the settings and the
-//! views' state, returning what they ask for as [`Command`]s that the app
+//! The panels: functions `fn(&mut egui::Ui, &mut PanelCtx)`, each given the
+//! session (read only), the settings and the views' state in a
+//! [`PanelCtx`], pushing what they ask for as [`Command`]s that the app
 //! applies after the frame's layout.
 //!
 //! [`Command`]: super::Command
 
 mod central;
+mod context;
 mod demos;
 mod diagnostics;
 mod gains;
@@ -20,6 +22,7 @@ mod table;
 mod top_bar;
 
 pub use central::central_ui;
+pub use context::PanelCtx;
 pub use plots_panel::plots_ui;
 pub use side::side_ui;
 pub use table::table_ui;

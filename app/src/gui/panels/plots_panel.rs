@@ -3,53 +3,58 @@
 //! demo's standardised forcing term and sigma_f there; the Pareto front of
 //! (sum d, S); the demo or the skill at a new start, goal and duration.
 
+use dmpscope_core::Model;
 use eframe::egui;
 
 use super::super::commands::Command;
 use super::super::view_state::{RightTab, ViewState};
 use super::super::{forcing, gen_plots, plots, tradeoff};
-use super::{diagnostics, generalise};
+use super::{PanelCtx, diagnostics, generalise};
 use crate::session::{GenSource, Session, Settings};
 
 /// The plots panel.
-pub fn plots_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    s: &mut Settings,
-    view: &mut ViewState,
-) -> Vec<Command> {
+pub fn plots_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
     let Some(model) = session.model() else {
-        return Vec::new();
+        return;
     };
     ui.horizontal(|ui| {
-        ui.selectable_value(&mut view.right, RightTab::Demo, "Demo");
-        ui.selectable_value(&mut view.right, RightTab::Forcing, "Forcing terms");
-        ui.selectable_value(&mut view.right, RightTab::TradeOff, "Trade-off");
-        ui.selectable_value(&mut view.right, RightTab::Generalised, "New target");
+        ui.selectable_value(&mut cx.view.right, RightTab::Demo, "Demo");
+        ui.selectable_value(&mut cx.view.right, RightTab::Forcing, "Forcing terms");
+        ui.selectable_value(&mut cx.view.right, RightTab::TradeOff, "Trade-off");
+        ui.selectable_value(&mut cx.view.right, RightTab::Generalised, "New target");
     });
     ui.separator();
-    match view.right {
-        RightTab::Demo => {}
-        RightTab::Forcing => return forcing_tab(ui, session, view),
-        RightTab::TradeOff => {
-            tradeoff_tab(ui, session, s, view);
-            return Vec::new();
-        }
-        RightTab::Generalised => return generalised_tab(ui, session, view),
+    match cx.view.right {
+        RightTab::Demo => demo_tab(ui, cx, model),
+        RightTab::Forcing => forcing_tab(ui, cx),
+        RightTab::TradeOff => tradeoff_tab(ui, session, cx.settings, cx.view),
+        RightTab::Generalised => generalised_tab(ui, cx),
     }
+}
+
+/// The demo shown (picking another asks for [`Command::Select`]), the time
+/// slider and its time plots against its regeneration.
+fn demo_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>, model: &Model) {
+    let session = cx.session;
     let demos = model.demos();
-    let Some(demo) = demos.get(view.selected) else {
-        return Vec::new();
+    let Some(demo) = demos.get(cx.view.selected) else {
+        return;
     };
     ui.horizontal(|ui| {
         egui::ComboBox::from_label("demo")
             .selected_text(demo.name.clone())
             .show_ui(ui, |ui| {
+                let mut selected = cx.view.selected;
                 for (i, d) in demos.iter().enumerate() {
-                    ui.selectable_value(&mut view.selected, i, &d.name);
+                    ui.selectable_value(&mut selected, i, &d.name);
+                }
+                if selected != cx.view.selected {
+                    cx.push(Command::Select(selected));
                 }
             });
     });
+    let view = &mut *cx.view;
     ui.horizontal(|ui| {
         let label = ui.label("time");
         let mut seconds = view.t * demo.duration_s;
@@ -66,17 +71,16 @@ pub fn plots_ui(
     {
         view.t = t;
     }
-    Vec::new()
 }
 
-fn generalised_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) -> Vec<Command> {
+fn generalised_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
     let Some(model) = session.model() else {
-        return Vec::new();
+        return;
     };
-    let mut out = Vec::new();
-    generalise::generalise_ui(ui, session, view, &mut out);
+    generalise::generalise_ui(ui, cx);
     let Some(Ok(g)) = session.generalised() else {
-        return out;
+        return;
     };
     ui.weak("solid: at the new target · dashed: at its own · dotted: the new goal");
     let own = session
@@ -92,15 +96,15 @@ fn generalised_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) -
                 duration_s: d.duration_s,
             })
         });
-    if let Some(t) = gen_plots::show(ui, g, own, view.t) {
-        view.t = t;
+    if let Some(t) = gen_plots::show(ui, g, own, cx.view.t) {
+        cx.view.t = t;
     }
-    out
 }
 
-fn forcing_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) -> Vec<Command> {
+fn forcing_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
     let (Some(model), Some(terms)) = (session.model(), session.forcing_terms()) else {
-        return Vec::new();
+        return;
     };
     if model.demos().len() < 2 {
         ui.label("S compares the demos' forcing terms: it needs two or more demonstrations.");
@@ -119,23 +123,21 @@ fn forcing_tab(ui: &mut egui::Ui, session: &Session, view: &mut ViewState) -> Ve
         names: &names,
         shares: session.point_shares(),
         flagged: &flagged,
-        hovered: view.hovered,
+        hovered: cx.view.hovered,
     };
     // The flagged demos, each excluded in one click.
-    let mut out = Vec::new();
     if !flagged.is_empty() {
         ui.horizontal_wrapped(|ui| {
             ui.label("flagged:");
             for &i in &flagged {
                 let label = format!("Exclude {}", names.get(i).map_or("", String::as_str));
-                out.extend(diagnostics::exclude_button(ui, session, i, &label, view));
+                diagnostics::exclude_button(ui, cx, i, &label);
             }
         });
     }
     if let Some(i) = forcing::show(ui, &input) {
-        view.hovering = Some(i);
+        cx.view.hovering = Some(i);
     }
-    out
 }
 
 fn tradeoff_tab(ui: &mut egui::Ui, session: &Session, s: &mut Settings, view: &mut ViewState) {

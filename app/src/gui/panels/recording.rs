@@ -13,31 +13,25 @@ use eframe::egui;
 
 use dmpscope_core::group::Grouping;
 
-use super::super::commands::Command;
 use super::super::timeline::{TimelineCache, timeline_ui};
-use super::super::view_state::ViewState;
+use super::PanelCtx;
 use super::demos::level_colour;
+use crate::session;
 use crate::session::sources::SourceSlot;
-use crate::session::{self, Session, Settings};
 
 /// The Recording section.
-pub fn recording_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    s: &mut Settings,
-    view: &mut ViewState,
-    out: &mut Vec<Command>,
-) {
-    let min = s.load.streams.min_extent_m;
+pub fn recording_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
+    let min = cx.settings.load.streams.min_extent_m;
     if session.recordings().is_empty() {
         ui.label("No recording is open.");
         return;
     }
-    if let Grouping::Segmented(seg) = &mut s.load.demos {
+    if let Grouping::Segmented(seg) = &mut cx.settings.load.demos {
         recording_thresholds_ui(ui, seg);
-        view.segment = *seg;
+        cx.view.segment = *seg;
     }
-    let segmenting = match s.load.demos {
+    let segmenting = match cx.settings.load.demos {
         Grouping::Segmented(seg) => Some(seg),
         _ => None,
     };
@@ -48,7 +42,7 @@ pub fn recording_ui(
             segmenting,
             min,
         };
-        recording_source_ui(ui, rows, &mut view.timelines, out);
+        recording_source_ui(ui, rows, cx);
     }
 }
 
@@ -84,12 +78,7 @@ struct SourceRows<'a> {
 }
 
 /// One recording's header: its load error, its streams and the topics not read.
-fn recording_source_ui(
-    ui: &mut egui::Ui,
-    rows: SourceRows<'_>,
-    timelines: &mut TimelineCache,
-    out: &mut Vec<Command>,
-) {
+fn recording_source_ui(ui: &mut egui::Ui, rows: SourceRows<'_>, cx: &mut PanelCtx<'_>) {
     let (source, slot) = (rows.source, rows.slot);
     let name = slot.source.name();
     let kept = slot.streams().iter().filter(|s| s.status.kept()).count();
@@ -109,8 +98,8 @@ fn recording_source_ui(
             // panel keeps its width whatever the reasons say.
             for stream in slot.streams() {
                 let forced = slot.overrides.get(&stream.topic).copied();
-                recording_stream_tick_ui(ui, source, stream, forced, out);
-                recording_stream_account_ui(ui, rows, stream, timelines);
+                recording_stream_tick_ui(ui, source, stream, forced, cx);
+                recording_stream_account_ui(ui, rows, stream, &mut cx.view.timelines);
             }
             let skipped = slot.skipped_topics();
             if !skipped.is_empty() {
@@ -129,7 +118,7 @@ fn recording_stream_tick_ui(
     source: usize,
     stream: &StreamInfo,
     forced: Option<bool>,
-    out: &mut Vec<Command>,
+    cx: &mut PanelCtx<'_>,
 ) {
     ui.horizontal(|ui| {
         let mut on = stream.status.kept();
@@ -138,14 +127,11 @@ fn recording_stream_tick_ui(
              Loading filter",
         );
         if tick.changed() {
-            out.push(
-                session::Command::SetStreamIncluded {
-                    source,
-                    topic: stream.topic.clone(),
-                    included: Some(on),
-                }
-                .into(),
-            );
+            cx.push(session::Command::SetStreamIncluded {
+                source,
+                topic: stream.topic.clone(),
+                included: Some(on),
+            });
         }
         if forced.is_some()
             && ui
@@ -153,14 +139,11 @@ fn recording_stream_tick_ui(
                 .on_hover_text("forget the tick: the Loading filter decides")
                 .clicked()
         {
-            out.push(
-                session::Command::SetStreamIncluded {
-                    source,
-                    topic: stream.topic.clone(),
-                    included: None,
-                }
-                .into(),
-            );
+            cx.push(session::Command::SetStreamIncluded {
+                source,
+                topic: stream.topic.clone(),
+                included: None,
+            });
         }
     });
 }

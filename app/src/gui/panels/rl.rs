@@ -10,8 +10,8 @@ use dmpscope_core::rl::{ActionMode, ExploreScale, REACHED_M};
 use eframe::egui::{self, Color32};
 use egui_plot::{Line, Plot, PlotPoints};
 
-use super::super::commands::Command;
 use super::super::view_state::{RlChoices, ViewState};
+use super::PanelCtx;
 use super::rl_table::runs_table;
 use crate::session::{self, RlProgress, RlRequest, RlRun, Session, Settings};
 
@@ -31,18 +31,13 @@ fn chosen_gains(session: &Session, s: &Settings, choice: usize) -> Option<(Strin
 }
 
 /// The RL section.
-pub fn rl_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    s: &Settings,
-    view: &mut ViewState,
-    out: &mut Vec<Command>,
-) {
-    rl_gains_ui(ui, &mut view.rl);
-    rl_options_ui(ui, &mut view.rl);
+pub fn rl_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
+    rl_gains_ui(ui, &mut cx.view.rl);
+    rl_options_ui(ui, &mut cx.view.rl);
     let run = session.rl();
     let running = run.is_some_and(|(_, p)| !p.done);
-    rl_buttons_ui(ui, session, s, view, running, out);
+    rl_buttons_ui(ui, cx, running);
     let Some((request, p)) = run else {
         ui.weak("Trains on the demo shown in the plots.");
         return;
@@ -121,16 +116,10 @@ fn rl_options_ui(ui: &mut egui::Ui, c: &mut RlChoices) {
 }
 
 /// The Train, Compare and Cancel buttons.
-fn rl_buttons_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    s: &Settings,
-    view: &ViewState,
-    running: bool,
-    out: &mut Vec<Command>,
-) {
+fn rl_buttons_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>, running: bool) {
+    let session = cx.session;
     ui.horizontal(|ui| {
-        let gains = chosen_gains(session, s, view.rl.gains);
+        let gains = chosen_gains(session, cx.settings, cx.view.rl.gains);
         let can = session.model().is_some() && gains.is_some() && !running;
         if ui
             .add_enabled(can, egui::Button::new("Train"))
@@ -144,9 +133,10 @@ fn rl_buttons_ui(
                 gains_name,
                 dm,
                 km,
-                seed: view.rl.seed,
+                seed: cx.view.rl.seed,
             }];
-            out.push(session::Command::StartRl(request(view, runs)).into());
+            let train = request(cx.view, runs);
+            cx.push(session::Command::StartRl(train));
         }
         let extracted = session.extraction().map(|x| (x.eval.dm, x.eval.km));
         let can = session.model().is_some() && extracted.is_some() && !running;
@@ -161,7 +151,7 @@ fn rl_buttons_ui(
         {
             let sets = std::iter::once(("Extracted".to_owned(), dm, km))
                 .chain(PAPER_PRESETS.iter().map(|p| (p.name.to_owned(), p.dm, p.km)));
-            let seed = view.rl.seed;
+            let seed = cx.view.rl.seed;
             let runs = sets
                 .flat_map(|(name, dm, km)| {
                     (0..COMPARE_SEEDS).map(move |i| RlRun {
@@ -172,10 +162,11 @@ fn rl_buttons_ui(
                     })
                 })
                 .collect();
-            out.push(session::Command::StartRl(request(view, runs)).into());
+            let compare = request(cx.view, runs);
+            cx.push(session::Command::StartRl(compare));
         }
         if running && ui.button("Cancel").clicked() {
-            out.push(session::Command::CancelRl.into());
+            cx.push(session::Command::CancelRl);
         }
     });
 }

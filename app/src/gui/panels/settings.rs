@@ -4,10 +4,12 @@
 
 use eframe::egui;
 
+use super::PanelCtx;
 use crate::session::Settings;
 
 /// The Settings section.
-pub fn settings_ui(ui: &mut egui::Ui, s: &mut Settings) {
+pub fn settings_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let s = &mut *cx.settings;
     let window_before = s.prep.sg_window;
     egui::Grid::new("settings").show(ui, |ui| {
         let l = ui.label("grid points");

@@ -3,39 +3,23 @@
 
 use eframe::egui;
 
-use super::super::commands::Command;
-use super::super::view_state::ViewState;
-use super::{demos, diagnostics, gains, loading, recording, rl, settings};
-use crate::session::{Session, Settings};
+use super::{PanelCtx, demos, diagnostics, gains, loading, recording, rl, settings};
 
 /// The side panel.
-pub fn side_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    s: &mut Settings,
-    view: &mut ViewState,
-) -> Vec<Command> {
-    let mut out = Vec::new();
-    demos::demos_ui(ui, session, view, &mut out);
+pub fn side_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    demos::demos_ui(ui, cx);
     ui.separator();
-    ui.collapsing("Recording", |ui| {
-        recording::recording_ui(ui, session, s, view, &mut out)
-    });
+    ui.collapsing("Recording", |ui| recording::recording_ui(ui, cx));
     ui.separator();
-    gains::gains_ui(ui, session, s);
+    gains::gains_ui(ui, cx);
     ui.separator();
     egui::CollapsingHeader::new("Diagnostics")
         .default_open(true)
-        .show(ui, |ui| {
-            diagnostics::diagnostics_ui(ui, session, s, view, &mut out)
-        });
+        .show(ui, |ui| diagnostics::diagnostics_ui(ui, cx));
     ui.separator();
-    ui.collapsing("RL with DMP", |ui| {
-        rl::rl_ui(ui, session, s, view, &mut out)
-    });
+    ui.collapsing("RL with DMP", |ui| rl::rl_ui(ui, cx));
     ui.separator();
-    ui.collapsing("Loading", |ui| loading::loading_ui(ui, s, view));
+    ui.collapsing("Loading", |ui| loading::loading_ui(ui, cx));
     ui.separator();
-    ui.collapsing("Settings", |ui| settings::settings_ui(ui, s));
-    out
+    ui.collapsing("Settings", |ui| settings::settings_ui(ui, cx));
 }

@@ -6,19 +6,12 @@
 use dmpscope_core::TableRow;
 use eframe::egui;
 
-use super::super::commands::Command;
-use super::super::view_state::ViewState;
-use crate::session::{Session, Settings};
+use super::PanelCtx;
 
 /// The Table I panel.
-pub fn table_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    _s: &mut Settings,
-    _view: &mut ViewState,
-) -> Vec<Command> {
-    let Some(report) = session.report() else {
-        return Vec::new();
+pub fn table_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let Some(report) = cx.session.report() else {
+        return;
     };
     ui.horizontal(|ui| {
         ui.label(egui::RichText::new("Table I").strong());
@@ -55,7 +48,6 @@ pub fn table_ui(
             }
         });
     });
-    Vec::new()
 }
 
 fn row(ui: &mut egui::Ui, r: &TableRow) {

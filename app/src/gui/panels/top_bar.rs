@@ -4,21 +4,16 @@
 use eframe::egui;
 
 use super::super::commands::{Command, Export, Map};
-use super::super::view_state::ViewState;
-use crate::session::{self, Session, Settings, Source, Status};
+use super::PanelCtx;
+use crate::session::{self, Source, Status};
 
 /// The top bar.
-pub fn top_bar_ui(
-    ui: &mut egui::Ui,
-    session: &Session,
-    _settings: &mut Settings,
-    _view: &mut ViewState,
-) -> Vec<Command> {
-    let mut out = Vec::new();
+pub fn top_bar_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
     ui.horizontal(|ui| {
         ui.strong("dmpscope");
         if ui.button("Open…").clicked() {
-            out.push(Command::Open { folder: false });
+            cx.push(Command::Open { folder: false });
         }
         if cfg!(not(target_arch = "wasm32")) {
             if ui
@@ -26,25 +21,25 @@ pub fn top_bar_ui(
                 .on_hover_text("a rosbag2 folder, or any folder of .mcap files")
                 .clicked()
             {
-                out.push(Command::Open { folder: true });
+                cx.push(Command::Open { folder: true });
             }
             if ui
                 .button("Browse…")
                 .on_hover_text("dmpscope's own file browser")
                 .clicked()
             {
-                out.push(Command::Browse);
+                cx.push(Command::Browse);
             }
         }
         ui.menu_button("Samples", |ui| {
             for (sample, about) in Source::samples() {
                 if ui.button(sample.name()).on_hover_text(about).clicked() {
-                    out.push(session::Command::OpenSample(sample).into());
+                    cx.push(session::Command::OpenSample(sample));
                     ui.close();
                 }
             }
         });
-        ui.menu_button("Export", |ui| export_menu(ui, session, &mut out));
+        ui.menu_button("Export", |ui| export_menu(ui, cx));
         ui.label(format!(
             "{} file(s), {} demos",
             session.sources().count(),
@@ -62,7 +57,7 @@ pub fn top_bar_ui(
                         .text(format!("landscape {done}/{total}")),
                 );
                 if ui.button("Cancel").clicked() {
-                    out.push(session::Command::CancelLandscape.into());
+                    cx.push(session::Command::CancelLandscape);
                 }
             }
             Status::Cancelled(done, total) | Status::Stopped(done, total) => {
@@ -73,20 +68,21 @@ pub fn top_bar_ui(
                 };
                 ui.label(format!("landscape {what} at {done}/{total}"));
                 if ui.button("Restart").clicked() {
-                    out.push(session::Command::RestartLandscape.into());
+                    cx.push(session::Command::RestartLandscape);
                 }
             }
             _ => {}
         }
         ui.weak("or drop .mcap / .csv files on the window");
     });
-    out
 }
 
-fn export_menu(ui: &mut egui::Ui, session: &Session, out: &mut Vec<Command>) {
+/// The Export menu's items, each asking for its export when clicked.
+fn export_menu(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
     let mut item = |ui: &mut egui::Ui, enabled: bool, label: &str, export: Export| {
         if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
-            out.push(Command::Export(export));
+            cx.push(Command::Export(export));
             ui.close();
         }
     };
