@@ -14,7 +14,7 @@ use web_time::Instant;
 use super::app::DmpApp;
 
 /// What the tests asked for and what they read.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct TestHooks {
     /// Training runs asked for, `(steps, seed)`, not yet started.
     pub train: Vec<(usize, u64)>,
@@ -22,6 +22,17 @@ pub struct TestHooks {
     pub grid: Vec<usize>,
     /// The app's state as JSON, written every frame.
     pub state: String,
+}
+
+impl Default for TestHooks {
+    /// No requests, and an empty JSON object until the first frame.
+    fn default() -> Self {
+        Self {
+            train: Vec::new(),
+            grid: Vec::new(),
+            state: "{}".to_owned(),
+        }
+    }
 }
 
 /// [`TestHooks`] shared between the app and the tests' entry points.
