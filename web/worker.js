@@ -1,7 +1,8 @@
 // A dmpscope worker: its own instance of the app's wasm module, computing
 // landscape tiles, the diagnostics' resampled extractions and RL runs for
-// the page (app/src/web/pool.rs is the page's side,
-// app/src/web/worker.rs what this calls). The page's first message hands
+// the page (app/src/web/transport.rs is the page's side of the messages,
+// the session's workers.rs what hands the pieces out, app/src/web/worker.rs
+// what this calls). The page's first message hands
 // over its compiled WebAssembly.Module, so nothing is fetched or compiled
 // twice; every later message waits for that instance.
 import init, * as dmpscope from "./dmpscope.js";
