@@ -234,9 +234,11 @@ impl Session {
             self.extraction.clear();
             return;
         };
-        let (landscape, k) = (shown.snapshot.landscape.clone(), settings.k);
+        let k = settings.k;
         let runner = &self.runner;
         if self.extraction.ensure_serial(key, || {
+            // Cloned only when a job starts (never per frame).
+            let landscape = shown.snapshot.landscape.clone();
             let work = Once::new(move || extract(&model, &landscape, k));
             Ok(runner.start("the extraction", work))
         }) {
@@ -260,10 +262,7 @@ impl Session {
     /// The diagnostics of the current extraction, recomputed when it or the
     /// diagnostics' settings change (gone while k is dragged).
     pub(crate) fn update_diagnostics(&mut self, settings: &Settings) {
-        let ready = self
-            .extraction()
-            .cloned()
-            .zip(self.extraction.key().copied());
+        let ready = found(self.extraction.value()).zip(self.extraction.key().copied());
         let (Some((found, extraction)), Some((model, _)), Some(shown)) =
             (ready, self.model_and_version(), &self.shown)
         else {
@@ -274,9 +273,10 @@ impl Session {
             extraction,
             settings: settings.diagnostics,
         };
-        let landscape = shown.snapshot.landscape.clone();
         let runner = &self.runner;
         if self.diagnostics.ensure_job(key, || {
+            // Cloned only when a job starts (never per frame).
+            let (landscape, found) = (shown.snapshot.landscape.clone(), found.clone());
             let work = DiagnosticsWork::new(model, landscape, found, settings.diagnostics, runner);
             Ok(runner.start("the diagnostics", work))
         }) {
@@ -309,9 +309,10 @@ impl Session {
             extraction,
             limit: limit.to_bits(),
         };
-        let (landscape, k) = (shown.snapshot.landscape.clone(), settings.k);
+        let k = settings.k;
         let runner = &self.runner;
         self.constrained.ensure_serial(key, || {
+            let landscape = shown.snapshot.landscape.clone();
             let work = Once::new(move || constrained(&model, &landscape, k, limit));
             Ok(runner.start("the constrained optimum", work))
         });
