@@ -1,4 +1,4 @@
-//! The user's settings, persisted between runs (eframe storage, the
+//! The user's settings, persisted between runs (the app's storage, the
 //! browser's local storage): the core's own serde types for loading,
 //! preprocessing, the DMP and the grid, so the app has every option the CLI
 //! has and every default is the core's.

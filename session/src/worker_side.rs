@@ -2,7 +2,7 @@
 //! (the models and generations it was sent) and computes (tiles of
 //! landscape points, resampled extractions, RL runs in slices) with the
 //! core's kernels, the same bits as anywhere else. The browser's Web
-//! Workers call it through the app's `web::worker`; the tests' fake pool
+//! Workers call it through the app's worker entry points; the tests' fake pool
 //! calls it directly.
 //!
 //! Messages, in order per worker: a model (an id and the model); a
