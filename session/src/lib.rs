@@ -279,13 +279,13 @@ impl Session {
             return;
         };
         let key = GenKey::new(version, settings.op, &spec);
-        self.primitive.ensure_now(key.primitive(), || {
+        self.primitive.ensure_now(key.primitive(), |_| {
             generalise::fit(&model, settings.op, &spec)
         });
         let primitive = &self.primitive;
         let computed = self
             .generalised
-            .ensure_now(key, || generalise::run(primitive, &spec));
+            .ensure_now(key, |_| generalise::run(primitive, &spec));
         self.runs.generalised += usize::from(computed);
     }
 

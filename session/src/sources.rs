@@ -274,7 +274,7 @@ impl SourceSlot {
         };
         let how = (Arrangement::of(options), self.overrides.clone());
         let (source, info, notices) = (&self.source, &mut self.streams_info, &mut news.notices);
-        let regrouped = self.grouped.ensure_now(how.clone(), || {
+        let regrouped = self.grouped.ensure_now(how, |how| {
             let loaded = streams.result.as_ref()?;
             let arranged = arrange(loaded.demos.clone(), &how.0, &how.1).map_err(|e| {
                 notices.push(Notice::error(e.to_string()));

@@ -37,6 +37,9 @@ pub struct Stage<K, T: Send + 'static> {
     cancelled: bool,
     /// The job stopped without a result (its thread died).
     died: bool,
+    /// The key of a running job `ensure_serial` waits for (the stage's key
+    /// is `None` meanwhile); a return to it keeps the job.
+    awaited: Option<K>,
 }
 
 impl<K, T: Send + 'static> Default for Stage<K, T> {
@@ -50,6 +53,7 @@ impl<K, T: Send + 'static> Default for Stage<K, T> {
             page_time: PageTime::default(),
             cancelled: false,
             died: false,
+            awaited: None,
         }
     }
 }
@@ -69,17 +73,19 @@ impl<K: PartialEq, T: Send + 'static> Stage<K, T> {
         self.page_time = PageTime::default();
         self.cancelled = false;
         self.died = false;
+        self.awaited = None;
         self.version += 1;
     }
 
-    /// Computes the value on the spot when the key changed; `true` when it
-    /// did.
-    pub fn ensure_now(&mut self, key: K, compute: impl FnOnce() -> Result<T, String>) -> bool {
+    /// Computes the value on the spot when the key changed (`compute` is
+    /// given the key); `true` when it did.
+    pub fn ensure_now(&mut self, key: K, compute: impl FnOnce(&K) -> Result<T, String>) -> bool {
         if self.is_for(&key) {
             return false;
         }
+        let computed = compute(&key);
         self.restart(key);
-        match compute() {
+        match computed {
             Ok(v) => self.value = Some(v),
             Err(e) => self.error = Some(e),
         }
@@ -113,19 +119,27 @@ impl<K: PartialEq, T: Send + 'static> Stage<K, T> {
         if self.is_for(&key) {
             return false;
         }
+        if self.awaited.as_ref() == Some(&key) {
+            // Back to the key of the job still running: it is wanted again.
+            self.key = self.awaited.take();
+            return false;
+        }
         self.value = None;
         self.error = None;
         if let Some(job) = &mut self.job {
             match job.poll() {
                 None | Some(Update::Progress(_)) => {
                     // The running job is for no key any more: whatever it
-                    // gives is dropped (see `poll`).
-                    self.key = None;
+                    // gives is dropped (see `poll`) unless its key returns.
+                    if self.key.is_some() {
+                        self.awaited = self.key.take();
+                    }
                     return false;
                 }
                 Some(_) => self.job = None,
             }
         }
+        self.awaited = None;
         self.ensure_job(key, start)
     }
 
@@ -140,6 +154,7 @@ impl<K: PartialEq, T: Send + 'static> Stage<K, T> {
             // A job awaited by `ensure_serial`: its answer is stale.
             if job.is_over() {
                 self.job = None;
+                self.awaited = None;
             }
             return Polled::Nothing;
         }
@@ -181,6 +196,8 @@ impl<K: PartialEq, T: Send + 'static> Stage<K, T> {
         self.error = None;
         self.cancelled = false;
         self.died = false;
+        self.awaited = None;
+        self.page_time = PageTime::default();
     }
 
     /// The key of the value (or of the job computing it).
@@ -218,6 +235,12 @@ impl<K: PartialEq, T: Send + 'static> Stage<K, T> {
         self.error.as_deref()
     }
 
+    /// Whether the stage waits for a job of an older key to end before it
+    /// starts the next (see [`Stage::ensure_serial`]).
+    pub fn waiting(&self) -> bool {
+        self.key.is_none() && self.job.is_some()
+    }
+
     /// Whether a job is running.
     pub fn running(&self) -> bool {
         self.job.is_some()
@@ -246,5 +269,100 @@ impl<K: PartialEq, T: Send + 'static> Stage<K, T> {
     /// A note about how the job runs (no thread could be started), once.
     pub fn take_notice(&mut self) -> Option<String> {
         self.job.as_mut().and_then(Job::take_notice)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, Ordering};
+
+    use super::*;
+    use crate::jobs::{Runner, Step, Work};
+
+    /// Gives `value` once `go` is set.
+    struct Gate {
+        go: Arc<AtomicBool>,
+        value: u32,
+    }
+
+    impl Work for Gate {
+        type Output = u32;
+        fn step(&mut self) -> Step<u32> {
+            if self.go.load(Ordering::Relaxed) {
+                Step::Done(self.value)
+            } else {
+                std::thread::sleep(std::time::Duration::from_millis(1));
+                Step::Working
+            }
+        }
+    }
+
+    #[test]
+    fn a_serial_stage_waits_for_its_job_and_keeps_it_when_its_key_returns() {
+        let runner = Runner::background(|| {});
+        let go = Arc::new(AtomicBool::new(false));
+        let gate = |value| Gate {
+            go: go.clone(),
+            value,
+        };
+        let mut stage: Stage<u8, u32> = Stage::default();
+        assert!(stage.ensure_serial(1, || Ok(runner.start("one", gate(1)))));
+        // Another key while the job runs: nothing starts, nothing is shown.
+        assert!(!stage.ensure_serial(2, || Ok(runner.start("two", gate(2)))));
+        assert!(stage.waiting() && stage.key().is_none() && stage.value().is_none());
+        // Back to the first key: its job is wanted again, not restarted.
+        assert!(!stage.ensure_serial(1, || Ok(runner.start("again", gate(9)))));
+        assert!(stage.is_for(&1) && stage.running());
+        go.store(true, Ordering::Relaxed);
+        let mut polled = Polled::Nothing;
+        for _ in 0..10_000 {
+            polled = stage.poll();
+            if polled != Polled::Nothing {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(1));
+        }
+        assert_eq!(polled, Polled::Value);
+        assert_eq!(stage.value(), Some(&1));
+        assert_eq!(stage.version(), 1, "one job started");
+    }
+
+    #[test]
+    fn a_stale_answer_never_reaches_a_new_key() {
+        let runner = Runner::background(|| {});
+        let go = Arc::new(AtomicBool::new(false));
+        let mut stage: Stage<u8, u32> = Stage::default();
+        let first = Gate {
+            go: go.clone(),
+            value: 1,
+        };
+        stage.ensure_serial(1, || Ok(runner.start("one", first)));
+        assert!(!stage.ensure_serial(2, || Ok(runner.start(
+            "unused",
+            Gate {
+                go: go.clone(),
+                value: 7,
+            }
+        ))));
+        go.store(true, Ordering::Relaxed);
+        // The old job ends: its answer is dropped, then key 2 starts.
+        for _ in 0..10_000 {
+            let _ = stage.poll();
+            if !stage.running() {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(1));
+        }
+        assert_eq!(stage.value(), None);
+        let second = Gate { go, value: 2 };
+        assert!(stage.ensure_serial(2, || Ok(runner.start("two", second))));
+        for _ in 0..10_000 {
+            if stage.poll() == Polled::Value {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(1));
+        }
+        assert_eq!((stage.key(), stage.value()), (Some(&2), Some(&2)));
     }
 }

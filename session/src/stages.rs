@@ -147,7 +147,7 @@ impl Session {
             dmp: settings.dmp,
         };
         let (demos, messages) = (&self.demos, &mut self.messages);
-        let built = self.model.ensure_now(key.clone(), || {
+        let built = self.model.ensure_now(key, |key| {
             let chosen: Vec<usize> = (0..demos.len()).filter(|&i| demos[i].included).collect();
             let raws = chosen.iter().map(|&i| &demos[i].raw);
             match build_model(raws, &key.prep, key.dmp, Unusable::Skip) {
@@ -200,9 +200,10 @@ impl Session {
         }
         match self.landscape.poll() {
             Polled::Value => {
-                if let Some(s) = self.landscape.value() {
+                // The snapshot moves to the view (the stage keeps its key).
+                if let Some(s) = self.landscape.take_value() {
                     self.counter += 1;
-                    self.shown = Some(Shown::new(s.clone(), settings.k, self.counter));
+                    self.shown = Some(Shown::new(s, settings.k, self.counter));
                 }
             }
             Polled::Failed(e) => self
@@ -294,6 +295,15 @@ impl Session {
     /// The optimum under the a_peak limit, when one is set.
     pub(crate) fn update_constrained(&mut self, settings: &Settings) {
         let limit = settings.a_peak_limit.filter(|l| l.is_finite() && *l > 0.0);
+        if limit.is_some() && self.extraction.waiting() {
+            // The extraction waits for its last job: so does this stage
+            // (one job at a time, whatever the user drags).
+            if let Polled::Failed(e) = self.constrained.poll() {
+                self.messages
+                    .say(Level::Error, format!("the constrained optimum: {e}"));
+            }
+            return;
+        }
         let extraction = self.extraction.key().copied();
         let (Some(limit), Some(extraction), Some((model, _)), Some(shown)) =
             (limit, extraction, self.model_and_version(), &self.shown)
@@ -329,7 +339,7 @@ impl Session {
             self.presets.clear();
             return;
         };
-        let evaluated = self.presets.ensure_now(version, || {
+        let evaluated = self.presets.ensure_now(version, |_| {
             Ok(PAPER_PRESETS
                 .iter()
                 .map(|p| (p.name.to_owned(), model.evaluate(p.dm, p.km)))
@@ -351,7 +361,7 @@ impl Session {
             dm: dm.to_bits(),
             km: km.to_bits(),
         };
-        let evaluated = self.point.ensure_now(key, || {
+        let evaluated = self.point.ensure_now(key, |_| {
             let standardised = model.similarity().standardised(dm, km);
             Ok(PointValue {
                 eval: model.evaluate(dm, km),

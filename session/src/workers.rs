@@ -13,8 +13,9 @@
 //! fails is terminated and its pieces are handed to the others; with none
 //! left the owner computes itself, and the user is told. When an owner has
 //! nothing left to hand out, an idle worker gets a copy of a piece another
-//! worker still holds (where the owner allows copies): a lost answer
-//! delays a fill, it never stalls it.
+//! worker still holds (where the owner allows copies; once per piece): with
+//! two or more live workers a lost answer delays a fill, it does not stall
+//! it.
 
 use std::collections::BTreeSet;
 use std::sync::{Arc, Mutex};
@@ -139,6 +140,10 @@ pub trait Transport {
     fn what(&self) -> &'static str {
         "worker"
     }
+    /// What the user is told when every worker has failed, for `why`.
+    fn all_failed(&self, why: &str) -> String {
+        format!("the workers failed ({why}): the rest is computed here, more slowly")
+    }
     /// Workers started (alive or not).
     fn workers(&self) -> usize;
     /// Posts `message` to `worker`; an error means the worker cannot take
@@ -239,6 +244,9 @@ pub struct Dispatcher<T> {
     live: BTreeSet<u64>,
     /// Pieces handed out whose worker died, by generation.
     lost: Vec<(u64, usize)>,
+    /// Pieces answered, and pieces copied once, of live generations.
+    answered: BTreeSet<(u64, usize)>,
+    copied: BTreeSet<(u64, usize)>,
     stats: WorkerStats,
     notices: Vec<String>,
 }
@@ -258,6 +266,8 @@ impl<T: Transport> Dispatcher<T> {
             next_id: 1,
             live: BTreeSet::new(),
             lost: Vec::new(),
+            answered: BTreeSet::new(),
+            copied: BTreeSet::new(),
             stats: WorkerStats {
                 workers: n,
                 alive: n,
@@ -337,6 +347,8 @@ impl<T: Transport> Dispatcher<T> {
         }
         self.lost.retain(|(g, _)| *g != generation);
         self.kept.retain(|r| r.generation != generation);
+        self.answered.retain(|(g, _)| *g != generation);
+        self.copied.retain(|(g, _)| *g != generation);
         self.broadcast(move || ToWorker::Forget { generation });
     }
 
@@ -367,7 +379,7 @@ impl<T: Transport> Dispatcher<T> {
         self.notices.push(if self.any_alive() {
             format!("{n} {what}(s) failed ({why}); the others take over their work")
         } else {
-            format!("the {what}s failed ({why}): the rest is computed here, more slowly")
+            self.transport.all_failed(why)
         });
     }
 
@@ -423,10 +435,9 @@ impl<T: Transport> Dispatcher<T> {
                     self.stats.refused += 1;
                     return 0;
                 }
-                // A copy of the piece elsewhere is no longer wanted.
-                for held in &mut self.in_flight {
-                    held.retain(|&x| x != (reply.generation, reply.piece));
-                }
+                // A copy still under way elsewhere answers later (refused);
+                // its worker keeps it until then.
+                self.answered.insert((reply.generation, reply.piece));
                 match owner.kind() {
                     "tile" => self.stats.tiles_from_workers += 1,
                     "part" => self.stats.parts_from_workers += 1,
@@ -464,23 +475,23 @@ impl<T: Transport> Dispatcher<T> {
             if !self.alive[i] || !self.in_flight[i].is_empty() {
                 continue;
             }
-            let held_once = self
+            // A piece of this generation another worker holds, not answered
+            // and not copied yet.
+            let unanswered = self
                 .in_flight
                 .iter()
                 .flatten()
-                .filter(|(g, _)| *g == generation)
+                .filter(|&&(g, p)| {
+                    g == generation
+                        && !self.answered.contains(&(g, p))
+                        && !self.copied.contains(&(g, p))
+                })
                 .map(|&(_, p)| p)
-                .find(|&p| {
-                    self.in_flight
-                        .iter()
-                        .flatten()
-                        .filter(|&&x| x == (generation, p))
-                        .count()
-                        == 1
-                });
-            let Some(piece) = held_once else { return };
+                .next();
+            let Some(piece) = unanswered else { return };
+            self.copied.insert((generation, piece));
             let Some(payload) = owner.payload(piece) else {
-                return;
+                continue;
             };
             self.stats.copies += 1;
             self.post(i, owner, generation, piece, payload);

@@ -31,6 +31,8 @@ struct Slot {
 pub struct WebTransport {
     slots: Vec<Slot>,
     inbox: Rc<RefCell<Vec<FromWorker>>>,
+    /// The last model sent, as JSON, by id (made once for every worker).
+    model_json: Option<(u64, JsValue)>,
 }
 
 /// A message: a plain object of these fields.
@@ -83,7 +85,14 @@ impl WebTransport {
             );
             return (None, notices);
         }
-        (Some(Self { slots, inbox }), notices)
+        (
+            Some(Self {
+                slots,
+                inbox,
+                model_json: None,
+            }),
+            notices,
+        )
     }
 
     fn spawn(
@@ -170,15 +179,30 @@ impl Transport for WebTransport {
         "Web Worker"
     }
 
+    fn all_failed(&self, why: &str) -> String {
+        format!(
+            "the browser's Web Workers failed ({why}): the page computes the rest itself, more \
+             slowly"
+        )
+    }
+
     fn workers(&self) -> usize {
         self.slots.len()
     }
 
     fn send(&mut self, worker: usize, msg: ToWorker<'_>) -> Result<(), String> {
+        if let ToWorker::Model { id, model } = &msg
+            && self.model_json.as_ref().is_none_or(|(m, _)| m != id)
+        {
+            self.model_json = Some((*id, json(&ModelInputs::of(model))?));
+        }
         let slot = self.slots.get(worker).ok_or("no such worker")?;
         let posted = match msg {
-            ToWorker::Model { id, model } => {
-                let inputs = json(&ModelInputs::of(model))?;
+            ToWorker::Model { id, .. } => {
+                let inputs = self
+                    .model_json
+                    .as_ref()
+                    .map_or(JsValue::NULL, |(_, j)| j.clone());
                 slot.worker.post_message(&message(&[
                     ("kind", "model".into()),
                     ("model", (id as f64).into()),

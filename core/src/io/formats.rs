@@ -1,6 +1,7 @@
 //! The registry of recording formats: each file format dmpscope reads is
-//! declared once here (its name, the file-name suffixes and magic bytes
-//! that identify it, its reader, and whether folders are walked for it),
+//! declared once here (its name, the file-name suffixes that identify it,
+//! the bytes its files start with, its reader, and the suffixes folders
+//! are walked for),
 //! and every place that picks a reader asks this table: [`super::source`]
 //! for paths and bytes (the CLI, the app, the browser), folder walking
 //! ([`super::rosbag2`]) and the app's file dialogs. Adding a format is an
@@ -27,7 +28,8 @@ pub struct Format {
     pub name: &'static str,
     /// File-name suffixes that identify it (lower case, with the dot).
     pub suffixes: &'static [&'static str],
-    /// The bytes its files start with (empty: none).
+    /// The bytes its files start with (empty: none); its reader checks
+    /// them and names the file when they are not there.
     pub magic: &'static [u8],
     /// Its reader.
     pub reader: Reader,
@@ -72,16 +74,10 @@ pub fn by_name(name: &str) -> Option<&'static Format> {
         .find(|f| f.suffixes.iter().any(|s| name.ends_with(s)))
 }
 
-/// The format of a file: by its name, else by its first bytes, else MCAP
-/// (whose reader then says what the file is not).
-pub fn detect(name: &str, head: &[u8]) -> &'static Format {
-    by_name(name)
-        .or_else(|| {
-            FORMATS
-                .iter()
-                .find(|f| !f.magic.is_empty() && head.starts_with(f.magic))
-        })
-        .unwrap_or(&FORMATS[0])
+/// The format of a file by its name, else MCAP (whose reader then says
+/// what the file is not, by its magic bytes).
+pub fn detect(name: &str) -> &'static Format {
+    by_name(name).unwrap_or(&FORMATS[0])
 }
 
 /// Whether a file in a folder of recordings is read.
@@ -120,7 +116,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn names_and_magic_pick_the_reader() {
+    fn names_pick_the_reader() {
         assert_eq!(by_name("a/B.MCAP").map(|f| f.reader), Some(Reader::Mcap));
         assert_eq!(
             by_name("bag_0.mcap.zstd").map(|f| f.reader),
@@ -128,12 +124,8 @@ mod tests {
         );
         assert_eq!(by_name("t.csv").map(|f| f.reader), Some(Reader::Csv));
         assert_eq!(by_name("notes.txt"), None);
-        assert_eq!(detect("upload", MCAP_MAGIC).reader, Reader::Mcap);
-        assert_eq!(
-            detect("upload", &[0x28, 0xb5, 0x2f, 0xfd, 0]).reader,
-            Reader::ZstdMcap
-        );
-        assert_eq!(detect("notes.txt", b"hello").reader, Reader::Mcap);
+        assert_eq!(detect("upload").reader, Reader::Mcap);
+        assert_eq!(detect("notes.txt").reader, Reader::Mcap);
     }
 
     #[test]

@@ -52,7 +52,7 @@ pub fn load_streams(
     options: &LoadOptions,
 ) -> Result<SourceDemos> {
     match data {
-        SourceData::Bytes(bytes) => match formats::detect(name, bytes).reader {
+        SourceData::Bytes(bytes) => match formats::detect(name).reader {
             Reader::Csv => {
                 let text = std::str::from_utf8(bytes).map_err(|e| Error::Source {
                     path: name.to_owned(),
