@@ -277,11 +277,6 @@ impl<T: Transport> Dispatcher<T> {
         }
     }
 
-    /// The transport (the tests' fake reads what it was sent).
-    pub fn transport(&self) -> &T {
-        &self.transport
-    }
-
     /// Whether any worker is alive.
     pub fn any_alive(&self) -> bool {
         self.alive.iter().any(|&a| a)

@@ -1,7 +1,6 @@
 //! The registry of recording formats: each file format dmpscope reads is
 //! declared once here (its name, the file-name suffixes that identify it,
-//! the bytes its files start with, its reader, and the suffixes folders
-//! are walked for),
+//! its reader, and the suffixes folders are walked for),
 //! and every place that picks a reader asks this table: [`super::source`]
 //! for paths and bytes (the CLI, the app, the browser), folder walking
 //! ([`super::rosbag2`]) and the app's file dialogs. Adding a format is an
@@ -28,9 +27,6 @@ pub struct Format {
     pub name: &'static str,
     /// File-name suffixes that identify it (lower case, with the dot).
     pub suffixes: &'static [&'static str],
-    /// The bytes its files start with (empty: none); its reader checks
-    /// them and names the file when they are not there.
-    pub magic: &'static [u8],
     /// Its reader.
     pub reader: Reader,
     /// The suffixes of its files that a folder of recordings is walked
@@ -38,29 +34,23 @@ pub struct Format {
     pub walk: &'static [&'static str],
 }
 
-/// The MCAP magic: every MCAP file starts with it.
-pub const MCAP_MAGIC: &[u8] = b"\x89MCAP0\r\n";
-
 /// Every format, in the order they are tried by name.
 pub const FORMATS: [Format; 3] = [
     Format {
         name: "MCAP",
         suffixes: &[".mcap"],
-        magic: MCAP_MAGIC,
         reader: Reader::Mcap,
         walk: &[".mcap"],
     },
     Format {
         name: "zstd-compressed MCAP",
         suffixes: &[".mcap.zstd", ".mcap.zst", ".zstd", ".zst"],
-        magic: &[0x28, 0xb5, 0x2f, 0xfd],
         reader: Reader::ZstdMcap,
         walk: &[".mcap.zstd", ".mcap.zst"],
     },
     Format {
         name: "CSV",
         suffixes: &[".csv"],
-        magic: &[],
         reader: Reader::Csv,
         walk: &[],
     },
