@@ -15,6 +15,7 @@ fn main() {
 fn main() -> std::process::ExitCode {
     use clap::Parser as _;
     use std::process::ExitCode;
+    quiet_on_closed_stdout();
     let args = cli::Cli::parse();
     let result = match args.command {
         None => dmpscope::gui::run(args.files),
@@ -27,4 +28,24 @@ fn main() -> std::process::ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// A reader that stops early (`dmpscope info x.mcap | head`) closes stdout;
+/// the next `println!` then panics with "failed printing to stdout". That is
+/// not an error of dmpscope's: leave quietly, as `cat` does.
+#[cfg(not(target_arch = "wasm32"))]
+fn quiet_on_closed_stdout() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(0);
+        }
+        default(info);
+    }));
 }

@@ -395,6 +395,7 @@ mod tests {
             positions: (0..n)
                 .map(|i| [extent * i as f64 / (n.max(2) - 1) as f64, 0.0, 0.0])
                 .collect(),
+            orientations: None,
             time_source: TimeSource::HeaderStamp,
         }
     }

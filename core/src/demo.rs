@@ -1,7 +1,11 @@
 //! A demonstration as it was recorded: stamps and positions, before any
 //! processing (method.md section 1).
 
+use std::ops::Range;
+
 use serde::Serialize;
+
+use crate::geom::Quat;
 
 /// Which clock a demo's stamps came from (method.md section 2.1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -26,6 +30,10 @@ pub struct RawDemo {
     pub stamps_ns: Vec<i64>,
     /// Positions in metres, one per stamp.
     pub positions: Vec<[f64; 3]>,
+    /// Orientations, one per stamp, in the same frame as the positions;
+    /// `None` when the source has none (a point, a CSV without `qx..qw`)
+    /// or when any sample's quaternion is unusable (not finite, zero).
+    pub orientations: Option<Vec<Quat>>,
     /// Where the stamps came from.
     pub time_source: TimeSource,
 }
@@ -47,25 +55,84 @@ pub struct DemoInfo {
     pub goal: [f64; 3],
     /// Where the stamps came from.
     pub time_source: TimeSource,
+    /// Whether the demo carries orientations.
+    pub orientation: bool,
 }
 
 impl RawDemo {
-    /// The samples in time order, equal stamps reduced to the first in file
-    /// order (method.md section 2.2). Returns `(stamps_ns, positions)`.
-    pub fn sorted_unique(&self) -> (Vec<i64>, Vec<[f64; 3]>) {
+    /// The sample indices in time order, equal stamps reduced to the first
+    /// in file order (method.md section 2.2).
+    pub fn unique_order(&self) -> Vec<usize> {
         let mut order: Vec<usize> = (0..self.stamps_ns.len()).collect();
         // `sort_by_key` is stable: of equal stamps the first in file order stays first.
         order.sort_by_key(|&i| self.stamps_ns[i]);
-        let mut stamps = Vec::with_capacity(order.len());
-        let mut positions = Vec::with_capacity(order.len());
-        for i in order {
-            if stamps.last() == Some(&self.stamps_ns[i]) {
-                continue;
-            }
-            stamps.push(self.stamps_ns[i]);
-            positions.push(self.positions[i]);
+        order.dedup_by_key(|i| self.stamps_ns[*i]);
+        order
+    }
+
+    /// The samples in time order, equal stamps reduced to the first in file
+    /// order (method.md section 2.2). Returns `(stamps_ns, positions)`.
+    pub fn sorted_unique(&self) -> (Vec<i64>, Vec<[f64; 3]>) {
+        let order = self.unique_order();
+        (
+            order.iter().map(|&i| self.stamps_ns[i]).collect(),
+            order.iter().map(|&i| self.positions[i]).collect(),
+        )
+    }
+
+    /// The demo with its samples in time order and equal stamps reduced,
+    /// as [`RawDemo::sorted_unique`], orientations included.
+    pub fn sorted(&self) -> RawDemo {
+        let order = self.unique_order();
+        RawDemo {
+            stamps_ns: order.iter().map(|&i| self.stamps_ns[i]).collect(),
+            positions: order.iter().map(|&i| self.positions[i]).collect(),
+            orientations: self
+                .orientations
+                .as_ref()
+                .map(|q| order.iter().map(|&i| q[i]).collect()),
+            ..self.without_samples()
         }
-        (stamps, positions)
+    }
+
+    /// The samples in `range` (in the demo's own order) as a demo of their
+    /// own, with this demo's file and clock, named `name` and `topic`.
+    pub fn part(&self, range: Range<usize>, name: String, topic: String) -> RawDemo {
+        RawDemo {
+            name,
+            topic,
+            stamps_ns: self.stamps_ns[range.clone()].to_vec(),
+            positions: self.positions[range.clone()].to_vec(),
+            orientations: self.orientations.as_ref().map(|q| q[range].to_vec()),
+            ..self.without_samples()
+        }
+    }
+
+    /// Appends `other`'s samples (a later file of the same recording); the
+    /// orientations stay only if both have them.
+    pub fn extend(&mut self, other: RawDemo) {
+        self.stamps_ns.extend(other.stamps_ns);
+        self.positions.extend(other.positions);
+        self.orientations = match (self.orientations.take(), other.orientations) {
+            (Some(mut a), Some(b)) => {
+                a.extend(b);
+                Some(a)
+            }
+            _ => None,
+        };
+    }
+
+    /// The demo's name, file, topic and clock with no samples.
+    fn without_samples(&self) -> RawDemo {
+        RawDemo {
+            name: self.name.clone(),
+            file: self.file.clone(),
+            topic: self.topic.clone(),
+            stamps_ns: Vec::new(),
+            positions: Vec::new(),
+            orientations: None,
+            time_source: self.time_source,
+        }
     }
 
     /// Last minus first stamp in seconds (0 for fewer than two samples),
@@ -111,6 +178,7 @@ impl RawDemo {
             start: positions.first().copied().unwrap_or([0.0; 3]),
             goal: positions.last().copied().unwrap_or([0.0; 3]),
             time_source: self.time_source,
+            orientation: self.orientations.is_some(),
         }
     }
 }

@@ -118,14 +118,11 @@ pub fn apply(streams: Vec<RawDemo>, policy: GapPolicy) -> (Vec<RawDemo>, Vec<Not
                 starts.insert(0, 0);
                 starts.push(stream.stamps_ns.len());
                 for (k, w) in starts.windows(2).enumerate() {
-                    out.push(RawDemo {
-                        name: format!("{} part {}/{parts}", stream.name, k + 1),
-                        file: stream.file.clone(),
-                        topic: stream.topic.clone(),
-                        stamps_ns: stream.stamps_ns[w[0]..w[1]].to_vec(),
-                        positions: stream.positions[w[0]..w[1]].to_vec(),
-                        time_source: stream.time_source,
-                    });
+                    out.push(stream.part(
+                        w[0]..w[1],
+                        format!("{} part {}/{parts}", stream.name, k + 1),
+                        stream.topic.clone(),
+                    ));
                 }
             }
         }
@@ -148,6 +145,7 @@ mod tests {
             topic: "/hand".into(),
             stamps_ns,
             positions,
+            orientations: None,
             time_source: TimeSource::HeaderStamp,
         }
     }

@@ -31,6 +31,7 @@ pub mod error;
 pub mod extract;
 pub mod gaps;
 pub mod generalise;
+pub mod geom;
 pub mod group;
 pub mod io;
 pub mod landscape;

@@ -151,17 +151,16 @@ pub fn find_segments(demo: &RawDemo, settings: &SegmentSettings) -> Result<Vec<S
 
 /// The recording cut into its segments, named `name#1`, `name#2`, ...
 pub fn split(demo: &RawDemo, settings: &SegmentSettings) -> Result<Vec<RawDemo>> {
-    let (stamps, positions) = demo.sorted_unique();
+    let sorted = demo.sorted();
     Ok(find_segments(demo, settings)?
         .into_iter()
         .enumerate()
-        .map(|(i, s)| RawDemo {
-            name: format!("{}#{}", demo.name, i + 1),
-            file: demo.file.clone(),
-            topic: format!("{}#{}", demo.topic, i + 1),
-            stamps_ns: stamps[s.first..=s.last].to_vec(),
-            positions: positions[s.first..=s.last].to_vec(),
-            time_source: demo.time_source,
+        .map(|(i, s)| {
+            sorted.part(
+                s.first..s.last + 1,
+                format!("{}#{}", demo.name, i + 1),
+                format!("{}#{}", demo.topic, i + 1),
+            )
         })
         .collect())
 }

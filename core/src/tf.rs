@@ -86,9 +86,22 @@ impl TfBuffer {
         frame: &str,
         stamp_ns: i64,
     ) -> Result<([f64; 3], bool), String> {
+        self.pose_in(target, frame, stamp_ns)
+            .map(|(origin, _, held)| (origin, held))
+    }
+
+    /// The pose of `frame` in `target` at `stamp_ns` (its origin and its
+    /// rotation `[x, y, z, w]`), and whether a dynamic transform had to be
+    /// held past its recorded span.
+    pub fn pose_in(
+        &mut self,
+        target: &str,
+        frame: &str,
+        stamp_ns: i64,
+    ) -> Result<([f64; 3], Quat, bool), String> {
         self.sort();
         let (target, frame) = (frame_name(target), frame_name(frame));
-        let (root_a, _, origin, held_a) = self.to_root(frame, stamp_ns)?;
+        let (root_a, q_frame, origin, held_a) = self.to_root(frame, stamp_ns)?;
         let (root_b, q, t, held_b) = self.to_root(target, stamp_ns)?;
         if root_a != root_b {
             return Err(format!(
@@ -96,7 +109,8 @@ impl TfBuffer {
             ));
         }
         let d = [origin[0] - t[0], origin[1] - t[1], origin[2] - t[2]];
-        Ok((rotate(conjugate(q), d), held_a || held_b))
+        let rotation = multiply(conjugate(q), q_frame);
+        Ok((rotate(conjugate(q), d), rotation, held_a || held_b))
     }
 
     /// `frame`'s transform to the root of its tree.
@@ -226,6 +240,16 @@ mod tests {
         let (p, held) = tf.origin_in("world", "tracker", 5).expect("chain");
         assert!(close(p, [1.0, 0.2, 0.0]), "{p:?}");
         assert!(!held);
+        // The tracker's rotation in world is the base's turn.
+        let (_, q, _) = tf.pose_in("world", "tracker", 5).expect("chain");
+        let e = yaw(std::f64::consts::FRAC_PI_2);
+        assert!((0..4).all(|k| (q[k] - e[k]).abs() < 1e-12), "{q:?}");
+        // And world's rotation in the tracker is its inverse.
+        let (_, q, _) = tf.pose_in("tracker", "world", 5).expect("chain");
+        assert!(
+            (q[2] + e[2]).abs() < 1e-12 && (q[3] - e[3]).abs() < 1e-12,
+            "{q:?}"
+        );
         // In base the tracker is its own translation; world's origin in
         // tracker is the inverse.
         let (p, _) = tf.origin_in("base", "tracker", 10).expect("chain");

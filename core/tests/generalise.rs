@@ -226,6 +226,7 @@ fn reach(delta: [f64; 3]) -> Model {
         topic: "/hand".into(),
         stamps_ns: samples.iter().map(|s| s.0).collect(),
         positions: samples.iter().map(|s| s.1).collect(),
+        orientations: None,
         time_source: TimeSource::HeaderStamp,
     };
     build_model(

@@ -22,6 +22,7 @@ fn short(name: &str) -> RawDemo {
         topic: "/short".into(),
         stamps_ns: (0..5).map(|k| k * 10_000_000).collect(),
         positions: (0..5).map(|k| [0.0, 0.0, k as f64]).collect(),
+        orientations: None,
         time_source: TimeSource::HeaderStamp,
     }
 }

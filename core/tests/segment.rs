@@ -53,6 +53,7 @@ fn continuous_take(count: usize, rest_s: f64) -> (RawDemo, Vec<(i64, i64)>) {
         topic: "/tracker".into(),
         stamps_ns: stamps,
         positions,
+        orientations: None,
         time_source: TimeSource::HeaderStamp,
     };
     (take, truth)
@@ -107,6 +108,7 @@ fn a_take_that_never_rests_is_one_segment_and_bad_settings_are_errors() {
         topic: "/t".into(),
         stamps_ns: demos[0].samples.iter().map(|s| s.0).collect(),
         positions: demos[0].samples.iter().map(|s| s.1).collect(),
+        orientations: None,
         time_source: TimeSource::HeaderStamp,
     };
     let found = find_segments(&raw, &SegmentSettings::default()).expect("segments");

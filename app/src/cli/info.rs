@@ -24,7 +24,8 @@ fn xyz(p: [f64; 3]) -> String {
     format!("({:+.3}, {:+.3}, {:+.3})", p[0], p[1], p[2])
 }
 
-/// Lists name, samples, duration, median rate, start and goal of every demo.
+/// Lists name, samples, duration, median rate, start, goal and whether it
+/// carries orientations, for every demo.
 pub fn run(args: Args) -> anyhow::Result<()> {
     if args.segment {
         return segments(&args);
@@ -37,18 +38,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let width = widest(infos.iter().map(|i| i.name.as_str()), 4);
     println!(
-        "{:<width$}  {:>7}  {:>8}  {:>8}  {:<26}  goal [m]",
-        "demo", "samples", "duration", "rate", "start [m]"
+        "{:<width$}  {:>7}  {:>8}  {:>8}  {:<26}  {:<26}  orientation",
+        "demo", "samples", "duration", "rate", "start [m]", "goal [m]"
     );
     for i in &infos {
         println!(
-            "{}  {:>7}  {:>7.3}s  {:>6.1}Hz  {:<26}  {}",
+            "{}  {:>7}  {:>7.3}s  {:>6.1}Hz  {:<26}  {:<26}  {}",
             pad_right(&i.name, width),
             i.n_samples,
             i.duration_s,
             i.median_rate_hz,
             xyz(i.start),
-            xyz(i.goal)
+            xyz(i.goal),
+            if i.orientation { "yes" } else { "none" }
         );
     }
     eprintln!("{} demonstrations", infos.len());

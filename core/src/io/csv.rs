@@ -1,16 +1,27 @@
 //! Plain CSV demonstrations: one `t,x,y,z` row per sample, `t` in seconds,
-//! positions in metres, comma separated. A first row whose fields are all
+//! positions in metres, comma separated, optionally followed by the
+//! orientation `qx,qy,qz,qw` (every row the same width). A first row whose fields are all
 //! non-numeric is a header and is skipped; blank lines and a UTF-8 byte
 //! order mark are skipped. Quoting is not supported.
 
 use crate::demo::{RawDemo, TimeSource};
 use crate::error::{Error, Location, Result};
+use crate::geom::quat_from_xyzw;
 
 /// The topic CSV demos carry (there is one demo per file).
 pub const CSV_TOPIC: &str = "csv";
 
 /// The field names of the columns, as errors name them.
-const FIELDS: [&str; 4] = ["t", "position.x", "position.y", "position.z"];
+const FIELDS: [&str; 8] = [
+    "t",
+    "position.x",
+    "position.y",
+    "position.z",
+    "orientation.x",
+    "orientation.y",
+    "orientation.z",
+    "orientation.w",
+];
 
 /// Loads a CSV file's text as one demo named by the label's file name
 /// (`file` is the label itself, `topic` is `csv`). Stamps are
@@ -21,6 +32,8 @@ pub fn load_csv(label: &str, text: &str) -> Result<RawDemo> {
     let at = || Location::file(label).topic(CSV_TOPIC);
     let mut stamps_ns = Vec::new();
     let mut positions = Vec::new();
+    let mut orientations = Vec::new();
+    let mut width = None;
     let mut first = true;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (line_index, line) in text.lines().enumerate() {
@@ -33,10 +46,13 @@ pub fn load_csv(label: &str, text: &str) -> Result<RawDemo> {
             continue;
         }
         let row = stamps_ns.len();
-        let values = parse_row(line).map_err(|reason| Error::Decode {
-            at: at().sample(row),
-            reason: format!("line {}: {reason}", line_index + 1),
-        })?;
+        let values =
+            parse_row(line, *width.get_or_insert_with(|| row_width(line))).map_err(|reason| {
+                Error::Decode {
+                    at: at().sample(row),
+                    reason: format!("line {}: {reason}", line_index + 1),
+                }
+            })?;
         if let Some(i) = values.iter().position(|v| !v.is_finite()) {
             return Err(Error::NonFinite {
                 at: at().sample(row),
@@ -57,6 +73,9 @@ pub fn load_csv(label: &str, text: &str) -> Result<RawDemo> {
         }
         stamps_ns.push(t_ns as i64);
         positions.push([values[1], values[2], values[3]]);
+        if let [.., qx, qy, qz, qw] = values[..] {
+            orientations.push(quat_from_xyzw([qx, qy, qz, qw]));
+        }
     }
     if positions.is_empty() {
         return Err(Error::Decode {
@@ -73,26 +92,45 @@ pub fn load_csv(label: &str, text: &str) -> Result<RawDemo> {
         topic: CSV_TOPIC.to_owned(),
         stamps_ns,
         positions,
+        // With orientation columns every row's quaternion must be usable.
+        orientations: if width == Some(8) {
+            orientations.into_iter().collect()
+        } else {
+            None
+        },
         time_source: TimeSource::HeaderStamp,
     })
 }
 
-/// The four numbers of one row, or what is wrong with it.
-fn parse_row(line: &str) -> std::result::Result<[f64; 4], String> {
-    let mut values = [0.0; 4];
+/// The width of the rows: 8 when the first data row has more than 4
+/// fields (`t,x,y,z,qx,qy,qz,qw`), else 4.
+fn row_width(line: &str) -> usize {
+    if line.split(',').count() > 4 { 8 } else { 4 }
+}
+
+/// The `width` numbers of one row, or what is wrong with it.
+fn parse_row(line: &str, width: usize) -> std::result::Result<Vec<f64>, String> {
+    let expected = if width == 8 {
+        "8 (t,x,y,z,qx,qy,qz,qw)"
+    } else {
+        "4 (t,x,y,z)"
+    };
+    let mut values = Vec::with_capacity(width);
     let mut fields = line.split(',');
-    for (i, value) in values.iter_mut().enumerate() {
+    for name in &FIELDS[..width] {
         let field = fields
             .next()
-            .ok_or_else(|| format!("{} fields, expected 4 (t,x,y,z)", i))?
+            .ok_or_else(|| format!("{} fields, expected {expected}", values.len()))?
             .trim();
-        *value = field
-            .parse()
-            .map_err(|_| format!("{} is {field:?}, not a number", FIELDS[i]))?;
+        values.push(
+            field
+                .parse()
+                .map_err(|_| format!("{name} is {field:?}, not a number"))?,
+        );
     }
     let extra = fields.count();
     if extra > 0 {
-        return Err(format!("{} fields, expected 4 (t,x,y,z)", 4 + extra));
+        return Err(format!("{} fields, expected {expected}", width + extra));
     }
     Ok(values)
 }

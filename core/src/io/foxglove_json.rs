@@ -48,23 +48,31 @@ impl MessageDecoder for JsonDecoder {
                     key: None,
                     stamp_ns,
                     position: vector(pose, "position", "pose.")?,
+                    orientation: Some(quaternion(pose, "orientation", "pose.")?),
                     ..PoseSample::default()
                 });
             }
             FoxgloveSchema::PosesInFrame => {
                 let stamp_ns = stamp(root, "")?;
-                let positions = objects(root, "poses")?
+                let poses = objects(root, "poses")?
                     .enumerate()
-                    .map(|(i, pose)| vector(Some(pose?), "position", &format!("poses[{i}].")))
+                    .map(|(i, pose)| {
+                        let (pose, path) = (Some(pose?), format!("poses[{i}]."));
+                        Ok((
+                            vector(pose, "position", &path)?,
+                            quaternion(pose, "orientation", &path)?,
+                        ))
+                    })
                     .collect::<Result<Vec<_>, String>>()?;
-                while self.index_keys.len() < positions.len() {
+                while self.index_keys.len() < poses.len() {
                     self.index_keys.push(self.index_keys.len().to_string());
                 }
-                for (key, position) in self.index_keys.iter().zip(positions) {
+                for (key, (position, orientation)) in self.index_keys.iter().zip(poses) {
                     out(PoseSample {
                         key: Some(Cow::Borrowed(key)),
                         stamp_ns,
                         position,
+                        orientation: Some(orientation),
                         ..PoseSample::default()
                     });
                 }
@@ -95,24 +103,12 @@ fn transform<'v>(t: &'v Object, path: &str) -> Result<PoseSample<'v>, String> {
         Some(Value::String(s)) => s.as_str(),
         Some(_) => return Err(format!("{path}parent_frame_id is not a string")),
     };
-    let mut rotation = [0.0; 4];
-    if let Some(q) = object(Some(t), "rotation", path)? {
-        for (value, part) in rotation.iter_mut().zip(["x", "y", "z", "w"]) {
-            *value = match field(q, part) {
-                None => 0.0,
-                Some(Value::Number(n)) => n
-                    .as_f64()
-                    .ok_or_else(|| format!("{path}rotation.{part} is not a finite number"))?,
-                Some(_) => return Err(format!("{path}rotation.{part} is not a number")),
-            };
-        }
-    }
     Ok(PoseSample {
         key: Some(Cow::Borrowed(child)),
         stamp_ns: stamp(t, path)?,
         position: vector(Some(t), "translation", path)?,
         parent: Some(Cow::Borrowed(parent)),
-        rotation,
+        orientation: Some(quaternion(Some(t), "rotation", path)?),
     })
 }
 
@@ -153,15 +149,31 @@ fn objects<'v>(
 
 /// The `x`, `y`, `z` of a Vector3 field; missing parts are zero.
 fn vector(obj: Option<&Object>, name: &str, path: &str) -> Result<[f64; 3], String> {
-    let v = object(obj, name, path)?;
-    let mut p = [0.0; 3];
-    for (value, axis) in p.iter_mut().zip(["x", "y", "z"]) {
-        *value = match v.and_then(|v| field(v, axis)) {
+    parts(object(obj, name, path)?, ["x", "y", "z"], name, path)
+}
+
+/// The `x`, `y`, `z`, `w` of a Quaternion field, as stored (missing parts
+/// are zero, so a missing field is the all-zero quaternion, which the
+/// loader takes as "no orientation").
+fn quaternion(obj: Option<&Object>, name: &str, path: &str) -> Result<[f64; 4], String> {
+    parts(object(obj, name, path)?, ["x", "y", "z", "w"], name, path)
+}
+
+/// Named number fields of an object; missing ones are zero.
+fn parts<const N: usize>(
+    v: Option<&Object>,
+    names: [&str; N],
+    name: &str,
+    path: &str,
+) -> Result<[f64; N], String> {
+    let mut p = [0.0; N];
+    for (value, part) in p.iter_mut().zip(names) {
+        *value = match v.and_then(|v| field(v, part)) {
             None => 0.0,
             Some(Value::Number(n)) => n
                 .as_f64()
-                .ok_or_else(|| format!("{path}{name}.{axis} is not a finite number"))?,
-            Some(_) => return Err(format!("{path}{name}.{axis} is not a number")),
+                .ok_or_else(|| format!("{path}{name}.{part} is not a finite number"))?,
+            Some(_) => return Err(format!("{path}{name}.{part} is not a number")),
         };
     }
     Ok(p)

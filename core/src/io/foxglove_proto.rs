@@ -29,11 +29,18 @@ struct Stamp {
     nanos: FieldDescriptor,
 }
 
-/// The path to a Vector3-like message and its `x`, `y`, `z` fields.
-struct Position {
+/// The path to a Vector3- or Quaternion-like message and its `N` number
+/// fields (`x`, `y`, `z`, and `w` for a quaternion).
+struct Parts<const N: usize> {
     path: Vec<FieldDescriptor>,
-    xyz: [FieldDescriptor; 3],
+    parts: [FieldDescriptor; N],
 }
+
+/// A position: `x`, `y`, `z`.
+type Position = Parts<3>;
+
+/// An orientation: `x`, `y`, `z`, `w`.
+type Orientation = Parts<4>;
 
 /// The fields of a `foxglove.FrameTransform` (the parent and the rotation
 /// only when the schema has them: the TF buffer of `--fixed-frame` needs
@@ -43,19 +50,19 @@ struct Transform {
     parent: Option<FieldDescriptor>,
     child: FieldDescriptor,
     translation: Position,
-    /// The `rotation` field and its `x`, `y`, `z`, `w`.
-    rotation: Option<(FieldDescriptor, [FieldDescriptor; 4])>,
+    /// The `rotation` and its `x`, `y`, `z`, `w`.
+    rotation: Option<Orientation>,
 }
 
 /// Where the poses are in a message of each schema.
 enum Shape {
     /// `PoseInFrame`: one stamp, one pose.
-    Single { stamp: Stamp, position: Position },
+    Single { stamp: Stamp, pose: Pose },
     /// `PosesInFrame`: one stamp, a list of poses keyed by index.
     Indexed {
         stamp: Stamp,
         poses: FieldDescriptor,
-        position: Position,
+        pose: Pose,
     },
     /// `FrameTransform`: one transform keyed by its child frame.
     Keyed(Transform),
@@ -91,14 +98,14 @@ impl ProtoDecoder {
         let shape = match schema {
             FoxgloveSchema::PoseInFrame => Shape::Single {
                 stamp: Stamp::resolve(&message)?,
-                position: Position::resolve(&message, &["pose", "position"])?,
+                pose: Pose::resolve(&message, &["pose"])?,
             },
             FoxgloveSchema::PosesInFrame => {
                 let (poses, pose) = message_field(&message, "poses", true)?;
                 Shape::Indexed {
                     stamp: Stamp::resolve(&message)?,
                     poses,
-                    position: Position::resolve(&pose, &["position"])?,
+                    pose: Pose::resolve(&pose, &[])?,
                 }
             }
             FoxgloveSchema::FrameTransform => Shape::Keyed(Transform::resolve(&message)?),
@@ -130,30 +137,31 @@ impl MessageDecoder for ProtoDecoder {
         let msg = DynamicMessage::decode(message.clone(), data)
             .map_err(|e| format!("not a valid protobuf {}: {e}", schema.name()))?;
         match shape {
-            Shape::Single { stamp, position } => out(PoseSample {
-                key: None,
-                stamp_ns: stamp.read(&msg)?,
-                position: position.read(&msg)?,
-                ..PoseSample::default()
-            }),
-            Shape::Indexed {
-                stamp,
-                poses,
-                position,
-            } => {
+            Shape::Single { stamp, pose } => {
+                let (position, orientation) = pose.read(&msg)?;
+                out(PoseSample {
+                    key: None,
+                    stamp_ns: stamp.read(&msg)?,
+                    position,
+                    orientation,
+                    ..PoseSample::default()
+                })
+            }
+            Shape::Indexed { stamp, poses, pose } => {
                 let stamp_ns = stamp.read(&msg)?;
                 let list = msg.get_field(poses);
-                let positions = messages(&list, poses)?
-                    .map(|pose| position.read(pose))
+                let read = messages(&list, poses)?
+                    .map(|m| pose.read(m))
                     .collect::<Result<Vec<_>, String>>()?;
-                while index_keys.len() < positions.len() {
+                while index_keys.len() < read.len() {
                     index_keys.push(index_keys.len().to_string());
                 }
-                for (key, position) in index_keys.iter().zip(positions) {
+                for (key, (position, orientation)) in index_keys.iter().zip(read) {
                     out(PoseSample {
                         key: Some(Cow::Borrowed(key)),
                         stamp_ns,
                         position,
+                        orientation,
                         ..PoseSample::default()
                     });
                 }
@@ -196,8 +204,37 @@ impl Stamp {
     }
 }
 
-impl Position {
+/// A `foxglove.Pose` at a path: its position, and its orientation when the
+/// schema has one.
+struct Pose {
+    position: Position,
+    orientation: Option<Orientation>,
+}
+
+impl Pose {
     fn resolve(message: &MessageDescriptor, path: &[&str]) -> Result<Self, String> {
+        let with = |last: &'static str| path.iter().copied().chain([last]).collect::<Vec<_>>();
+        Ok(Self {
+            position: Parts::resolve(message, &with("position"), ["x", "y", "z"])?,
+            orientation: Parts::resolve(message, &with("orientation"), ["x", "y", "z", "w"]).ok(),
+        })
+    }
+
+    fn read(&self, msg: &DynamicMessage) -> Result<([f64; 3], Option<[f64; 4]>), String> {
+        let orientation = match &self.orientation {
+            Some(o) => Some(o.read(msg)?),
+            None => None,
+        };
+        Ok((self.position.read(msg)?, orientation))
+    }
+}
+
+impl<const N: usize> Parts<N> {
+    fn resolve(
+        message: &MessageDescriptor,
+        path: &[&str],
+        names: [&str; N],
+    ) -> Result<Self, String> {
         let mut desc = message.clone();
         let mut fields = Vec::with_capacity(path.len());
         for name in path {
@@ -205,60 +242,57 @@ impl Position {
             fields.push(field);
             desc = inner;
         }
+        let mut parts = Vec::with_capacity(N);
+        for name in names {
+            parts.push(scalar_field(&desc, name, Scalar::Float)?);
+        }
+        let parts = parts
+            .try_into()
+            .map_err(|_| "a vector's field count".to_owned())?;
         Ok(Self {
             path: fields,
-            xyz: [
-                scalar_field(&desc, "x", Scalar::Float)?,
-                scalar_field(&desc, "y", Scalar::Float)?,
-                scalar_field(&desc, "z", Scalar::Float)?,
-            ],
+            parts,
         })
     }
 
-    /// The position; unset messages on the way give zeros, as in protobuf.
-    fn read(&self, msg: &DynamicMessage) -> Result<[f64; 3], String> {
-        read_xyz(msg, &self.path, &self.xyz)
+    /// The numbers; unset messages on the way give zeros, as in protobuf.
+    fn read(&self, msg: &DynamicMessage) -> Result<[f64; N], String> {
+        read_parts(msg, &self.path, &self.parts)
     }
 }
 
-fn read_xyz(
+fn read_parts<const N: usize>(
     msg: &DynamicMessage,
     path: &[FieldDescriptor],
-    xyz: &[FieldDescriptor; 3],
-) -> Result<[f64; 3], String> {
+    parts: &[FieldDescriptor; N],
+) -> Result<[f64; N], String> {
     match path.split_first() {
         None => {
-            let mut p = [0.0; 3];
-            for (v, field) in p.iter_mut().zip(xyz) {
+            let mut p = [0.0; N];
+            for (v, field) in p.iter_mut().zip(parts) {
                 *v = float(&msg.get_field(field), field)?;
             }
             Ok(p)
         }
         Some((first, rest)) => {
             if !msg.has_field(first) {
-                return Ok([0.0; 3]);
+                return Ok([0.0; N]);
             }
             let value = msg.get_field(first);
             let inner = value.as_message().ok_or_else(|| not_a("message", first))?;
-            read_xyz(inner, rest, xyz)
+            read_parts(inner, rest, parts)
         }
     }
 }
 
 impl Transform {
     fn resolve(message: &MessageDescriptor) -> Result<Self, String> {
-        let rotation = message_field(message, "rotation", false)
-            .ok()
-            .and_then(|(field, q)| {
-                let part = |n| scalar_field(&q, n, Scalar::Float).ok();
-                Some((field, [part("x")?, part("y")?, part("z")?, part("w")?]))
-            });
         Ok(Self {
             stamp: Stamp::resolve(message)?,
             parent: scalar_field(message, "parent_frame_id", Scalar::String).ok(),
             child: scalar_field(message, "child_frame_id", Scalar::String)?,
-            translation: Position::resolve(message, &["translation"])?,
-            rotation,
+            translation: Parts::resolve(message, &["translation"], ["x", "y", "z"])?,
+            rotation: Parts::resolve(message, &["rotation"], ["x", "y", "z", "w"]).ok(),
         })
     }
 
@@ -280,22 +314,16 @@ impl Transform {
         };
         // An unset rotation reads as zeros, which the TF buffer takes as
         // the identity.
-        let mut rotation = [0.0; 4];
-        if let Some((field, parts)) = &self.rotation
-            && msg.has_field(field)
-        {
-            let value = msg.get_field(field);
-            let q = value.as_message().ok_or_else(|| not_a("message", field))?;
-            for (v, part) in rotation.iter_mut().zip(parts) {
-                *v = float(&q.get_field(part), part)?;
-            }
-        }
+        let orientation = match &self.rotation {
+            Some(r) => Some(r.read(msg)?),
+            None => None,
+        };
         Ok(PoseSample {
             key: Some(key),
             stamp_ns: self.stamp.read(msg)?,
             position: self.translation.read(msg)?,
             parent,
-            rotation,
+            orientation,
         })
     }
 }

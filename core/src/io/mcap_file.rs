@@ -14,6 +14,7 @@ use super::chunks::{ChunkError, for_each_record, lengths_fit};
 use super::{ChannelSchema, MessageDecoder, decoder_for};
 use crate::demo::{RawDemo, TimeSource};
 use crate::error::{Error, Location, Result};
+use crate::geom::Quat;
 
 /// The largest single record the loader accepts; a declared length beyond it
 /// is an error, never an allocation.
@@ -46,6 +47,15 @@ impl UpAxis {
         match self {
             Self::ZUp => p,
             Self::YUp => [-p[2], -p[0], p[1]],
+        }
+    }
+
+    /// An orientation in dmpscope's z-up frame (the same turn as
+    /// [`UpAxis::to_z_up`] applies to positions, then the body's own).
+    pub fn orientation_to_z_up(self, q: Quat) -> Quat {
+        match self {
+            Self::ZUp => q,
+            Self::YUp => crate::geom::y_up_to_z_up() * q,
         }
     }
 }
@@ -126,6 +136,9 @@ struct Stream {
     stamps: Vec<Option<i64>>,
     log_times: Vec<i64>,
     positions: Vec<[f64; 3]>,
+    /// Each sample's orientation, already in dmpscope's z-up frame; `None`
+    /// where the message has none or an unusable one.
+    orientations: Vec<Option<Quat>>,
 }
 
 /// One stream of messages: the channels of one topic and schema (a merged
@@ -378,7 +391,7 @@ impl Collector<'_> {
                 && sample
                     .position
                     .iter()
-                    .chain(&sample.rotation)
+                    .chain(sample.orientation.iter().flatten())
                     .all(|v| v.is_finite())
             {
                 buffer.add(
@@ -386,7 +399,7 @@ impl Collector<'_> {
                     child,
                     sample.stamp_ns.unwrap_or(log_time),
                     sample.position,
-                    sample.rotation,
+                    sample.orientation.unwrap_or([0.0; 4]),
                     is_static,
                 );
             }
@@ -420,6 +433,10 @@ impl Collector<'_> {
             stream.stamps.push(sample.stamp_ns);
             stream.log_times.push(log_time);
             stream.positions.push(options.up.to_z_up(sample.position));
+            let orientation = sample.orientation.and_then(crate::geom::quat_from_xyzw);
+            stream
+                .orientations
+                .push(orientation.map(|q| options.up.orientation_to_z_up(q)));
         });
         let at = Location::file(label);
         if let Err(reason) = decoded {
@@ -640,7 +657,7 @@ pub fn load_reader<R: Read>(label: &str, mut input: R, options: &LoadOptions) ->
 }
 
 /// Re-expresses a TF stream in `fixed` (method.md section 11): each sample
-/// becomes the frame's origin in `fixed` at its stamp. Gives a note when
+/// becomes the frame's origin and orientation in `fixed` at its stamp. Gives a note when
 /// transforms were held past their recorded span.
 fn in_fixed_frame(
     buffer: &mut crate::tf::TfBuffer,
@@ -652,9 +669,10 @@ fn in_fixed_frame(
     let mut held = 0;
     for i in 0..s.positions.len() {
         let stamp = s.stamps[i].unwrap_or(s.log_times[i]);
-        let (p, h) = buffer.origin_in(fixed, frame, stamp)?;
+        let (p, q, h) = buffer.pose_in(fixed, frame, stamp)?;
         held += usize::from(h);
         s.positions[i] = up.to_z_up(p);
+        s.orientations[i] = crate::geom::quat_from_xyzw(q).map(|q| up.orientation_to_z_up(q));
     }
     Ok((held > 0).then(|| {
         format!(
@@ -712,6 +730,7 @@ fn finish_stream(
         topic: source,
         stamps_ns,
         positions: s.positions,
+        orientations: s.orientations.into_iter().collect(),
         time_source,
     }
 }

@@ -48,9 +48,11 @@ pub struct PoseSample<'a> {
     /// frame, which the TF buffer of `--fixed-frame` needs; `None` for
     /// poses.
     pub parent: Option<Cow<'a, str>>,
-    /// For a transform, its rotation `[x, y, z, w]` (all zero when unset,
-    /// taken as the identity; unused for poses).
-    pub rotation: [f64; 4],
+    /// The orientation `[x, y, z, w]` as stored (a pose's orientation, a
+    /// transform's rotation), not yet checked or normalised; `None` when
+    /// the schema has none (a point). The TF buffer takes a missing or
+    /// all-zero rotation as the identity.
+    pub orientation: Option<[f64; 4]>,
 }
 
 /// Decodes the messages of one channel.

@@ -148,11 +148,14 @@ impl<'a> Reader<'a> {
         ])
     }
 
-    fn skip4(&mut self, names: [&str; 4]) -> Result<(), String> {
-        for name in names {
-            self.f64(name)?;
-        }
-        Ok(())
+    /// Four float64 fields (a quaternion `[x, y, z, w]`).
+    fn vec4(&mut self, names: [&str; 4]) -> Result<[f64; 4], String> {
+        Ok([
+            self.f64(names[0])?,
+            self.f64(names[1])?,
+            self.f64(names[2])?,
+            self.f64(names[3])?,
+        ])
     }
 
     /// One `geometry_msgs/TransformStamped`, keyed by its child frame.
@@ -169,32 +172,29 @@ impl<'a> Reader<'a> {
             "transform.translation.y",
             "transform.translation.z",
         ])?;
-        let mut rotation = [0.0; 4];
-        for (v, name) in rotation.iter_mut().zip([
+        let rotation = self.vec4([
             "transform.rotation.x",
             "transform.rotation.y",
             "transform.rotation.z",
             "transform.rotation.w",
-        ]) {
-            *v = self.f64(name)?;
-        }
+        ])?;
         Ok(PoseSample {
             key: Some(Cow::Borrowed(child)),
             stamp_ns,
             position,
             parent: Some(Cow::Borrowed(parent)),
-            rotation,
+            orientation: Some(rotation),
         })
     }
 }
 
-/// Decodes ROS 1 `geometry_msgs/PoseStamped`: header, then the position of
-/// the pose (the orientation is read past).
+/// Decodes ROS 1 `geometry_msgs/PoseStamped`: header, then the pose
+/// (position and orientation).
 pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String> {
     let mut r = Reader::new(message);
     let stamp_ns = r.header()?;
     let position = r.vec3(["pose.position.x", "pose.position.y", "pose.position.z"])?;
-    r.skip4([
+    let orientation = r.vec4([
         "pose.orientation.x",
         "pose.orientation.y",
         "pose.orientation.z",
@@ -204,6 +204,7 @@ pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String
         key: None,
         stamp_ns,
         position,
+        orientation: Some(orientation),
         ..PoseSample::default()
     })
 }
@@ -261,9 +262,9 @@ fn write_string(buf: &mut Vec<u8>, s: &str) {
     buf.extend_from_slice(s.as_bytes());
 }
 
-/// Writes a position and an identity quaternion.
-fn write_pose(buf: &mut Vec<u8>, position: [f64; 3]) {
-    for v in position.into_iter().chain([0.0, 0.0, 0.0, 1.0]) {
+/// Writes a position and an orientation `[x, y, z, w]`.
+fn write_pose(buf: &mut Vec<u8>, position: [f64; 3], orientation: [f64; 4]) {
+    for v in position.into_iter().chain(orientation) {
         buf.extend_from_slice(&v.to_le_bytes());
     }
 }
@@ -271,9 +272,20 @@ fn write_pose(buf: &mut Vec<u8>, position: [f64; 3]) {
 /// Encodes ROS 1 `geometry_msgs/PoseStamped` with seq 0 and an identity
 /// orientation.
 pub fn encode_pose_stamped(stamp_ns: i64, frame_id: &str, position: [f64; 3]) -> Vec<u8> {
+    encode_oriented_pose_stamped(stamp_ns, frame_id, position, [0.0, 0.0, 0.0, 1.0])
+}
+
+/// Encodes ROS 1 `geometry_msgs/PoseStamped` with seq 0 and an orientation
+/// `[x, y, z, w]`.
+pub fn encode_oriented_pose_stamped(
+    stamp_ns: i64,
+    frame_id: &str,
+    position: [f64; 3],
+    orientation: [f64; 4],
+) -> Vec<u8> {
     let mut buf = Vec::with_capacity(72 + frame_id.len());
     write_header(&mut buf, stamp_ns, frame_id);
-    write_pose(&mut buf, position);
+    write_pose(&mut buf, position, orientation);
     buf
 }
 

@@ -174,18 +174,20 @@ fn vec3(r: &mut CdrReader<'_>, names: [&str; 3]) -> Result<[f64; 3], String> {
     Ok([r.f64(names[0])?, r.f64(names[1])?, r.f64(names[2])?])
 }
 
-/// Four float64 fields (a quaternion), read past.
-fn skip4(r: &mut CdrReader<'_>, names: [&str; 4]) -> Result<(), String> {
-    for name in names {
-        r.f64(name)?;
-    }
-    Ok(())
+/// Four float64 fields (a quaternion `[x, y, z, w]`).
+fn vec4(r: &mut CdrReader<'_>, names: [&str; 4]) -> Result<[f64; 4], String> {
+    Ok([
+        r.f64(names[0])?,
+        r.f64(names[1])?,
+        r.f64(names[2])?,
+        r.f64(names[3])?,
+    ])
 }
 
-/// The fields of `geometry_msgs/Pose`; gives the position.
-fn pose(r: &mut CdrReader<'_>) -> Result<[f64; 3], String> {
+/// The fields of `geometry_msgs/Pose`: the position and the orientation.
+fn pose(r: &mut CdrReader<'_>) -> Result<([f64; 3], [f64; 4]), String> {
     let p = vec3(r, ["pose.position.x", "pose.position.y", "pose.position.z"])?;
-    skip4(
+    let q = vec4(
         r,
         [
             "pose.orientation.x",
@@ -194,7 +196,7 @@ fn pose(r: &mut CdrReader<'_>) -> Result<[f64; 3], String> {
             "pose.orientation.w",
         ],
     )?;
-    Ok(p)
+    Ok((p, q))
 }
 
 /// One `geometry_msgs/TransformStamped`, keyed by its child frame (borrowed
@@ -212,36 +214,37 @@ fn transform_stamped<'a>(r: &mut CdrReader<'a>) -> Result<PoseSample<'a>, String
             "transform.translation.z",
         ],
     )?;
-    let mut rotation = [0.0; 4];
-    for (v, name) in rotation.iter_mut().zip([
-        "transform.rotation.x",
-        "transform.rotation.y",
-        "transform.rotation.z",
-        "transform.rotation.w",
-    ]) {
-        *v = r.f64(name)?;
-    }
+    let rotation = vec4(
+        r,
+        [
+            "transform.rotation.x",
+            "transform.rotation.y",
+            "transform.rotation.z",
+            "transform.rotation.w",
+        ],
+    )?;
     Ok(PoseSample {
         key: Some(Cow::Borrowed(child)),
         stamp_ns: stamp_ns(sec, nanosec),
         position,
         parent: Some(Cow::Borrowed(parent)),
-        rotation,
+        orientation: Some(rotation),
     })
 }
 
 // ---------------------------------------------------------------- decoders
 
 /// Decodes `geometry_msgs/msg/PoseStamped`: header (stamp, frame id), then the
-/// position of the pose (the orientation is not needed).
+/// pose (position and orientation).
 pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String> {
     let mut r = CdrReader::new(message)?;
     let stamp_ns = header(&mut r)?;
-    let position = pose(&mut r)?;
+    let (position, orientation) = pose(&mut r)?;
     Ok(PoseSample {
         key: None,
         stamp_ns,
         position,
+        orientation: Some(orientation),
         ..PoseSample::default()
     })
 }
@@ -251,7 +254,7 @@ pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String
 pub fn decode_pose_with_covariance_stamped(message: &[u8]) -> Result<PoseSample<'static>, String> {
     let mut r = CdrReader::new(message)?;
     let stamp_ns = header(&mut r)?;
-    let position = pose(&mut r)?;
+    let (position, orientation) = pose(&mut r)?;
     for _ in 0..36 {
         r.f64("pose.covariance")?;
     }
@@ -259,6 +262,7 @@ pub fn decode_pose_with_covariance_stamped(message: &[u8]) -> Result<PoseSample<
         key: None,
         stamp_ns,
         position,
+        orientation: Some(orientation),
         ..PoseSample::default()
     })
 }
@@ -277,7 +281,7 @@ pub fn decode_point_stamped(message: &[u8]) -> Result<PoseSample<'static>, Strin
 }
 
 /// Decodes `geometry_msgs/msg/TransformStamped`: header, child frame id (the
-/// sample's key), then the translation (the rotation is read past).
+/// sample's key), then the translation and the rotation.
 pub fn decode_transform_stamped(message: &[u8]) -> Result<PoseSample<'_>, String> {
     let mut r = CdrReader::new(message)?;
     transform_stamped(&mut r)
@@ -351,12 +355,9 @@ fn write_header(w: &mut CdrWriter, stamp_ns: i64, frame_id: &str) {
     w.string(frame_id);
 }
 
-/// Writes a position and an identity quaternion.
-fn write_pose(w: &mut CdrWriter, position: [f64; 3]) {
-    for v in position {
-        w.f64(v);
-    }
-    for v in [0.0, 0.0, 0.0, 1.0] {
+/// Writes a position and an orientation `[x, y, z, w]`.
+fn write_pose(w: &mut CdrWriter, position: [f64; 3], orientation: [f64; 4]) {
+    for v in position.into_iter().chain(orientation) {
         w.f64(v);
     }
 }
@@ -372,9 +373,19 @@ fn write_transform(w: &mut CdrWriter, t: &StampedTransform<'_>) {
 
 /// Encodes `geometry_msgs/msg/PoseStamped` with an identity orientation.
 pub fn encode_pose_stamped(stamp_ns: i64, frame_id: &str, position: [f64; 3]) -> Vec<u8> {
+    encode_oriented_pose_stamped(stamp_ns, frame_id, position, [0.0, 0.0, 0.0, 1.0])
+}
+
+/// Encodes `geometry_msgs/msg/PoseStamped` with an orientation `[x, y, z, w]`.
+pub fn encode_oriented_pose_stamped(
+    stamp_ns: i64,
+    frame_id: &str,
+    position: [f64; 3],
+    orientation: [f64; 4],
+) -> Vec<u8> {
     let mut w = CdrWriter::new();
     write_header(&mut w, stamp_ns, frame_id);
-    write_pose(&mut w, position);
+    write_pose(&mut w, position, orientation);
     w.finish()
 }
 
@@ -387,7 +398,7 @@ pub fn encode_pose_with_covariance_stamped(
 ) -> Vec<u8> {
     let mut w = CdrWriter::new();
     write_header(&mut w, stamp_ns, frame_id);
-    write_pose(&mut w, position);
+    write_pose(&mut w, position, [0.0, 0.0, 0.0, 1.0]);
     for i in 0..36 {
         w.f64(if i % 7 == 0 { 1e-6 } else { 0.0 });
     }

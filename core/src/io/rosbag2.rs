@@ -227,10 +227,7 @@ pub fn read_bag(folder: &Path, files: &[PathBuf], options: &LoadOptions) -> Resu
         out.notes.extend(loaded.notes);
         for demo in loaded.demos {
             match joined.get_mut(&demo.topic) {
-                Some(stream) => {
-                    stream.stamps_ns.extend(demo.stamps_ns);
-                    stream.positions.extend(demo.positions);
-                }
+                Some(stream) => stream.extend(demo),
                 None => {
                     let topic = demo.topic.clone();
                     joined.insert(

@@ -186,6 +186,7 @@ pub fn raw_demo(stamps: &[i64], positions: &[[f64; 3]]) -> RawDemo {
         topic: "/hand".into(),
         stamps_ns: stamps.to_vec(),
         positions: positions.to_vec(),
+        orientations: None,
         time_source: TimeSource::HeaderStamp,
     }
 }

@@ -64,6 +64,7 @@ pub fn raw_demos() -> Vec<RawDemo> {
                         [p[0], p[1], p[2]]
                     })
                     .collect(),
+                orientations: None,
                 time_source: TimeSource::HeaderStamp,
             }
         })
