@@ -408,7 +408,7 @@ fn the_new_target_tab_runs_a_demo_or_the_skill_and_exports_it_for_a_robot() {
     };
     let closer: [f64; 3] = std::array::from_fn(|a| start[a] + 0.5 * (goal[a] - start[a]));
     let mut spec = *h.state().session().generalise_spec().expect("on");
-    spec.target.goal = Some(closer);
+    spec.target.goal = Some(closer.into());
     spec.target.duration_s = Some(2.5);
     let ctx = h.ctx.clone();
     h.state_mut().apply(

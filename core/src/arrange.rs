@@ -393,7 +393,7 @@ mod tests {
             topic: topic.into(),
             stamps_ns: (0..n as i64).map(|i| i * 11_000_000).collect(),
             positions: (0..n)
-                .map(|i| [extent * i as f64 / (n.max(2) - 1) as f64, 0.0, 0.0])
+                .map(|i| [extent * i as f64 / (n.max(2) - 1) as f64, 0.0, 0.0].into())
                 .collect(),
             orientations: None,
             time_source: TimeSource::HeaderStamp,

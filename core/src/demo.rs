@@ -5,7 +5,7 @@ use std::ops::Range;
 
 use serde::Serialize;
 
-use crate::geom::Quat;
+use crate::geom::{Quat, Vec3};
 
 /// Which clock a demo's stamps came from (method.md section 2.1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -29,7 +29,7 @@ pub struct RawDemo {
     /// Time stamps in integer nanoseconds, file order.
     pub stamps_ns: Vec<i64>,
     /// Positions in metres, one per stamp.
-    pub positions: Vec<[f64; 3]>,
+    pub positions: Vec<Vec3>,
     /// Orientations, one per stamp, in the same frame as the positions;
     /// `None` when the source has none (a point, a CSV without `qx..qw`)
     /// or when any sample's quaternion is unusable (not finite, zero).
@@ -72,7 +72,7 @@ impl RawDemo {
 
     /// The samples in time order, equal stamps reduced to the first in file
     /// order (method.md section 2.2). Returns `(stamps_ns, positions)`.
-    pub fn sorted_unique(&self) -> (Vec<i64>, Vec<[f64; 3]>) {
+    pub fn sorted_unique(&self) -> (Vec<i64>, Vec<Vec3>) {
         let order = self.unique_order();
         (
             order.iter().map(|&i| self.stamps_ns[i]).collect(),
@@ -175,8 +175,8 @@ impl RawDemo {
             n_samples: self.stamps_ns.len(),
             duration_s,
             median_rate_hz: if h > 0.0 { 1.0 / h } else { 0.0 },
-            start: positions.first().copied().unwrap_or([0.0; 3]),
-            goal: positions.last().copied().unwrap_or([0.0; 3]),
+            start: positions.first().map_or([0.0; 3], |p| (*p).into()),
+            goal: positions.last().map_or([0.0; 3], |p| (*p).into()),
             time_source: self.time_source,
             orientation: self.orientations.is_some(),
         }

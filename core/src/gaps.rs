@@ -137,7 +137,7 @@ mod tests {
 
     fn stream(stamps_ns: Vec<i64>) -> RawDemo {
         let positions = (0..stamps_ns.len())
-            .map(|i| [i as f64 * 1e-3, 0.0, 0.0])
+            .map(|i| [i as f64 * 1e-3, 0.0, 0.0].into())
             .collect();
         RawDemo {
             name: "f.mcap:/hand".into(),

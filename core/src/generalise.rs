@@ -10,6 +10,7 @@
 //! give the same bits.
 
 use crate::error::{Error, Result};
+use crate::geom::Vec3;
 use crate::mapping::norm;
 pub use crate::mapping::{Mapping, Scaling};
 use crate::model::{Model, Rollout};
@@ -18,9 +19,9 @@ use crate::model::{Model, Rollout};
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Target {
     /// New start, absolute metres.
-    pub start: Option<[f64; 3]>,
+    pub start: Option<Vec3>,
     /// New goal, absolute metres.
-    pub goal: Option<[f64; 3]>,
+    pub goal: Option<Vec3>,
     /// New duration T', seconds.
     pub duration_s: Option<f64>,
     /// Spatial scaling mode.
@@ -44,22 +45,22 @@ pub struct Primitive {
     /// `alpha_x` of the canonical system.
     pub alpha_x: f64,
     /// Origin of the relative coordinates below (absolute metres).
-    pub origin: [f64; 3],
+    pub origin: Vec3,
     /// Own start, relative to `origin`.
-    pub y0: [f64; 3],
+    pub y0: Vec3,
     /// Own goal, relative to `origin`.
-    pub goal: [f64; 3],
+    pub goal: Vec3,
     /// Initial velocity `y'(0)` in unit time.
-    pub v0: [f64; 3],
+    pub v0: Vec3,
     /// Own duration T, seconds.
     pub duration_s: f64,
     /// LWR weights per axis of the forcing term.
     pub weights: [Vec<f64>; 3],
     /// The forcing term on the grid, times `dt^2` (the integration's form).
-    pub(crate) fdt2: Vec<[f64; 3]>,
+    pub(crate) fdt2: Vec<Vec3>,
     /// Skills only: every member's forcing term (times `dt^2`) and initial
     /// velocity, mapped into the skill's frame, for the band.
-    pub(crate) members: Vec<(Vec<[f64; 3]>, [f64; 3])>,
+    pub(crate) members: Vec<(Vec<Vec3>, Vec3)>,
     /// The diagonal of the bounding box of the start, the goal and the path
     /// at its own target (metres), computed once.
     pub(crate) extent: f64,
@@ -73,20 +74,20 @@ pub struct Generalised {
     /// Real time of each point, seconds (0 to T').
     pub t: Vec<f64>,
     /// Real-time velocity, m/s (`y' / T'`).
-    pub v: Vec<[f64; 3]>,
+    pub v: Vec<Vec3>,
     /// Real-time acceleration, m/s^2 (`y'' / T'^2`).
-    pub a: Vec<[f64; 3]>,
+    pub a: Vec<Vec3>,
     /// Start, absolute.
-    pub start: [f64; 3],
+    pub start: Vec3,
     /// Goal, absolute.
-    pub goal: [f64; 3],
+    pub goal: Vec3,
     /// Duration T', seconds.
     pub duration_s: f64,
     /// The map applied to the forcing term and initial velocity.
     pub mapping: Mapping,
     /// Skills: per-time SD of the members' positions (absolute band
     /// half-width per axis); empty for a demo.
-    pub band: Vec<[f64; 3]>,
+    pub band: Vec<Vec3>,
     /// Largest real-time speed, m/s.
     pub peak_speed: f64,
     /// Largest real-time acceleration norm, m/s^2.
@@ -118,7 +119,7 @@ impl Primitive {
             .f
             .iter()
             .map(|fk| {
-                std::array::from_fn(|ax| {
+                Vec3::from_fn(|ax, _| {
                     let [f0, f1, f2] = fk[ax];
                     f0 * dt2 + dm * (f1 * dt2) + km * (f2 * dt2)
                 })
@@ -154,7 +155,7 @@ impl Primitive {
                 hi[a] = hi[a].max(p[a]);
             }
         }
-        self.extent = norm(std::array::from_fn(|a| hi[a] - lo[a]));
+        self.extent = norm(Vec3::from_fn(|a, _| hi[a] - lo[a]));
         self
     }
 
@@ -169,7 +170,7 @@ impl Primitive {
     }
 
     /// The forcing term `f(x_k)` on the grid.
-    pub fn forcing(&self) -> Vec<[f64; 3]> {
+    pub fn forcing(&self) -> Vec<Vec3> {
         let dt2 = self.dt() * self.dt();
         self.fdt2.iter().map(|f| f.map(|v| v / dt2)).collect()
     }
@@ -179,13 +180,13 @@ impl Primitive {
     }
 
     /// Own start, absolute.
-    pub fn start_abs(&self) -> [f64; 3] {
-        std::array::from_fn(|a| self.y0[a] + self.origin[a])
+    pub fn start_abs(&self) -> Vec3 {
+        Vec3::from_fn(|a, _| self.y0[a] + self.origin[a])
     }
 
     /// Own goal, absolute.
-    pub fn goal_abs(&self) -> [f64; 3] {
-        std::array::from_fn(|a| self.goal[a] + self.origin[a])
+    pub fn goal_abs(&self) -> Vec3 {
+        Vec3::from_fn(|a, _| self.goal[a] + self.origin[a])
     }
 
     /// Runs the primitive at `target`: from its start to its goal over its
@@ -222,18 +223,18 @@ impl Primitive {
         }
         // Relative coordinates: the defaults keep the primitive's own bits.
         let y0 = match target.start {
-            Some(s) => std::array::from_fn(|a| s[a] - self.origin[a]),
+            Some(s) => Vec3::from_fn(|a, _| s[a] - self.origin[a]),
             None => self.y0,
         };
         let g = match target.goal {
-            Some(s) => std::array::from_fn(|a| s[a] - self.origin[a]),
+            Some(s) => Vec3::from_fn(|a, _| s[a] - self.origin[a]),
             None => self.goal,
         };
         // The map from the absolute numbers an export holds (docs/export.md),
         // so a runner computes the same one; at the defaults from == to.
         let (own_start, own_goal) = (self.start_abs(), self.goal_abs());
-        let from: [f64; 3] = std::array::from_fn(|a| own_goal[a] - own_start[a]);
-        let to: [f64; 3] = std::array::from_fn(|a| goal[a] - start[a]);
+        let from: Vec3 = Vec3::from_fn(|a, _| own_goal[a] - own_start[a]);
+        let to: Vec3 = Vec3::from_fn(|a, _| goal[a] - start[a]);
         let mapping = Mapping::between(from, to, target.scaling).map_err(|e| match e {
             Error::InvalidSetting(m) => Error::InvalidSetting(format!("{}: {m}", self.name)),
             other => other,
@@ -263,7 +264,7 @@ impl Primitive {
         }
         let n = self.fdt2.len();
         let dt = self.dt();
-        let fdt2: Vec<[f64; 3]> = if mapping == Mapping::IDENTITY {
+        let fdt2: Vec<Vec3> = if mapping == Mapping::IDENTITY {
             self.fdt2.clone()
         } else {
             self.fdt2.iter().map(|f| mapping.apply(*f)).collect()
@@ -271,7 +272,7 @@ impl Primitive {
         let v0 = mapping.apply(self.v0);
         let mut unit = self.integrate(y0, g, &fdt2, v0);
         for p in &mut unit.y {
-            *p = std::array::from_fn(|a| p[a] + self.origin[a]);
+            *p = Vec3::from_fn(|a, _| p[a] + self.origin[a]);
         }
         if let Some(s) = target.start {
             // The state at step 0 is the start, exactly.
@@ -279,10 +280,10 @@ impl Primitive {
         }
         let band = self.band(y0, g, &mapping, &unit.y);
         let t: Vec<f64> = (0..n).map(|k| duration * k as f64 * dt).collect();
-        let v: Vec<[f64; 3]> = unit.v.iter().map(|v| v.map(|c| c / duration)).collect();
+        let v: Vec<Vec3> = unit.v.iter().map(|v| v.map(|c| c / duration)).collect();
         let dur2 = duration * duration;
-        let a: Vec<[f64; 3]> = unit.a.iter().map(|a| a.map(|c| c / dur2)).collect();
-        let finite = |rows: &[[f64; 3]]| rows.iter().flatten().all(|c| c.is_finite());
+        let a: Vec<Vec3> = unit.a.iter().map(|a| a.map(|c| c / dur2)).collect();
+        let finite = |rows: &[Vec3]| rows.iter().all(|r| r.iter().all(|c| c.is_finite()));
         if !(finite(&unit.y) && finite(&v) && finite(&a) && finite(&band)) {
             return Err(Error::InvalidSetting(format!(
                 "{}: the motion diverges at D/M {} and K/M {} over {duration} s (its numbers \
@@ -293,7 +294,7 @@ impl Primitive {
         let peak_speed = v.iter().map(|v| norm(*v)).fold(0.0, f64::max);
         let a_peak = a.iter().map(|a| norm(*a)).fold(0.0, f64::max);
         let last = unit.y[n - 1];
-        let final_error = norm(std::array::from_fn(|c| last[c] - goal[c]));
+        let final_error = norm(Vec3::from_fn(|c, _| last[c] - goal[c]));
         Ok(Generalised {
             unit,
             t,
@@ -312,24 +313,18 @@ impl Primitive {
     }
 
     /// Per-time SD (N - 1) of the members' positions at the target.
-    fn band(
-        &self,
-        y0: [f64; 3],
-        g: [f64; 3],
-        mapping: &Mapping,
-        mean: &[[f64; 3]],
-    ) -> Vec<[f64; 3]> {
+    fn band(&self, y0: Vec3, g: Vec3, mapping: &Mapping, mean: &[Vec3]) -> Vec<Vec3> {
         let m = self.members.len();
         if m < 2 {
             return if m == 1 {
-                vec![[0.0; 3]; mean.len()]
+                vec![Vec3::zeros(); mean.len()]
             } else {
                 Vec::new()
             };
         }
-        let mut sum2 = vec![[0.0; 3]; mean.len()];
+        let mut sum2 = vec![Vec3::zeros(); mean.len()];
         for (fdt2, v0) in &self.members {
-            let mapped: Vec<[f64; 3]> = fdt2.iter().map(|f| mapping.apply(*f)).collect();
+            let mapped: Vec<Vec3> = fdt2.iter().map(|f| mapping.apply(*f)).collect();
             let path = self.integrate(y0, g, &mapped, mapping.apply(*v0)).y;
             for (k, p) in path.iter().enumerate() {
                 for a in 0..3 {
@@ -345,21 +340,21 @@ impl Primitive {
 
     /// The full unit-time rollout (relative positions) of an already
     /// mapped forcing term: the arithmetic of [`Model::rollout`].
-    fn integrate(&self, y0: [f64; 3], g: [f64; 3], fdt2: &[[f64; 3]], v0: [f64; 3]) -> Rollout {
+    fn integrate(&self, y0: Vec3, g: Vec3, fdt2: &[Vec3], v0: Vec3) -> Rollout {
         let n = fdt2.len();
         let dt = self.dt();
         let dt2 = dt * dt;
         let (ddt, kdt2) = (self.dm * dt, self.km * dt2);
-        let mut z: [f64; 3] = std::array::from_fn(|a| y0[a] - g[a]);
-        let mut u: [f64; 3] = v0.map(|v| v * dt);
+        let mut z: Vec3 = Vec3::from_fn(|a, _| y0[a] - g[a]);
+        let mut u: Vec3 = v0.map(|v| v * dt);
         let mut out = Rollout {
             y: Vec::with_capacity(n),
             v: Vec::with_capacity(n),
             a: Vec::with_capacity(n),
         };
         for f in fdt2 {
-            let mut acc = [0.0; 3];
-            out.y.push(std::array::from_fn(|a| z[a] + g[a]));
+            let mut acc = Vec3::zeros();
+            out.y.push(Vec3::from_fn(|a, _| z[a] + g[a]));
             out.v.push(u.map(|u| u / dt));
             for a in 0..3 {
                 let du = f[a] - kdt2 * z[a] - ddt * u[a];

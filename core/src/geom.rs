@@ -31,6 +31,11 @@ pub fn xyzw(q: &Quat) -> [f64; 4] {
     [c.x, c.y, c.z, c.w]
 }
 
+/// Vectors as plain `[x, y, z]` arrays (what file formats and plots hold).
+pub fn arrays(v: &[Vec3]) -> Vec<[f64; 3]> {
+    v.iter().map(|p| (*p).into()).collect()
+}
+
 /// The rotation that takes a y-up frame's axes to dmpscope's z-up ones
 /// (the same map as the positions': `(x, y, z) -> (-z, -x, y)`).
 pub fn y_up_to_z_up() -> Quat {

@@ -10,6 +10,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
+use crate::geom::Vec3;
 
 /// How the forcing term follows a moved goal (method.md section 10).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -51,11 +52,11 @@ impl Mapping {
     pub const IDENTITY: Self = Self::Diagonal([1.0; 3]);
 
     /// Applies the map to a vector.
-    pub fn apply(&self, v: [f64; 3]) -> [f64; 3] {
+    pub fn apply(&self, v: Vec3) -> Vec3 {
         match self {
-            Self::Diagonal(d) => std::array::from_fn(|a| d[a] * v[a]),
+            Self::Diagonal(d) => Vec3::from_fn(|a, _| d[a] * v[a]),
             Self::Matrix(m) => {
-                std::array::from_fn(|a| m[a][0] * v[0] + m[a][1] * v[1] + m[a][2] * v[2])
+                Vec3::from_fn(|a, _| m[a][0] * v[0] + m[a][1] * v[1] + m[a][2] * v[2])
             }
         }
     }
@@ -72,7 +73,8 @@ impl Mapping {
 
     /// The map taking displacement `from` (`g - y0`) to `to` (`g' - y0'`)
     /// under `scaling`. Frame-independent scaling needs `from` non-zero.
-    pub fn between(from: [f64; 3], to: [f64; 3], scaling: Scaling) -> Result<Self> {
+    pub fn between(from: Vec3, to: Vec3, scaling: Scaling) -> Result<Self> {
+        let (from, to): ([f64; 3], [f64; 3]) = (from.into(), to.into());
         if from == to {
             return Ok(Self::IDENTITY);
         }
@@ -104,8 +106,10 @@ impl Mapping {
     }
 }
 
-/// The Euclidean length.
-pub(crate) fn norm(v: [f64; 3]) -> f64 {
+/// The Euclidean length, summed in axis order (the bits the golden
+/// numbers were made with).
+pub(crate) fn norm(v: impl Into<[f64; 3]>) -> f64 {
+    let v: [f64; 3] = v.into();
     (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
@@ -182,7 +186,7 @@ mod tests {
             [-0.36, 0.48, 0.8],
         ] {
             let r = smallest_rotation(a, b).expect("not parallel");
-            let got = Mapping::Matrix(r).apply(a);
+            let got = Mapping::Matrix(r).apply(a.into());
             for c in 0..3 {
                 assert!((got[c] - b[c]).abs() < 1e-15, "{got:?} vs {b:?}");
             }
@@ -203,14 +207,21 @@ mod tests {
         let r = smallest_rotation(a, near.map(|v| v / len)).expect("opposite");
         let exact = smallest_rotation(a, [-1.0, 0.0, 0.0]).expect("opposite");
         assert_eq!(r, exact);
-        assert_eq!(Mapping::Matrix(r).apply(a), [-1.0, 0.0, 0.0]);
+        assert_eq!(
+            Mapping::Matrix(r).apply(a.into()),
+            Vec3::new(-1.0, 0.0, 0.0)
+        );
     }
 
     #[test]
     fn per_axis_factors_leave_a_still_axis_alone() {
-        let m =
-            Mapping::between([0.2, 0.0, 1e-12], [0.4, 0.3, 0.1], Scaling::Paper).expect("paper");
+        let m = Mapping::between(
+            Vec3::new(0.2, 0.0, 1e-12),
+            Vec3::new(0.4, 0.3, 0.1),
+            Scaling::Paper,
+        )
+        .expect("paper");
         assert_eq!(m, Mapping::Diagonal([2.0, 1.0, 1.0]));
-        assert!(Mapping::between([0.0; 3], [0.1, 0.0, 0.0], Scaling::Frame).is_err());
+        assert!(Mapping::between(Vec3::zeros(), Vec3::new(0.1, 0.0, 0.0), Scaling::Frame).is_err());
     }
 }

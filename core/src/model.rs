@@ -12,6 +12,7 @@ use serde::Serialize;
 
 use crate::dmp::{Basis, DmpSettings, Projections};
 use crate::error::{Error, Result};
+use crate::geom::Vec3;
 use crate::prepare::PreparedDemo;
 use crate::quantity::{self, PointValues, Quantity};
 use crate::similarity::{Similarity, trapezoid};
@@ -102,11 +103,11 @@ impl PointEval {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rollout {
     /// Positions (relative to the demo's start, like [`PreparedDemo::y`]).
-    pub y: Vec<[f64; 3]>,
+    pub y: Vec<Vec3>,
     /// Velocities.
-    pub v: Vec<[f64; 3]>,
+    pub v: Vec<Vec3>,
     /// Accelerations.
-    pub a: Vec<[f64; 3]>,
+    pub a: Vec<Vec3>,
 }
 
 /// The damping ratio `zeta = D / (2 sqrt(K))` (method.md section 4).
@@ -175,11 +176,11 @@ impl Model {
     }
 
     /// The fitted forcing term of demo `i` at `(dm, km)` on the grid.
-    pub fn forcing(&self, i: usize, dm: f64, km: f64) -> Vec<[f64; 3]> {
+    pub fn forcing(&self, i: usize, dm: f64, km: f64) -> Vec<Vec3> {
         self.projections[i]
             .f
             .iter()
-            .map(|fk| [0, 1, 2].map(|ax| fk[ax][0] + dm * fk[ax][1] + km * fk[ax][2]))
+            .map(|fk| Vec3::from_fn(|ax, _| fk[ax][0] + dm * fk[ax][1] + km * fk[ax][2]))
             .collect()
     }
 
@@ -341,8 +342,8 @@ impl Model {
         };
         for step in &kernel.steps {
             let mut a = [0.0; 3];
-            out.y.push(std::array::from_fn(|ax| z[ax] + g[ax]));
-            out.v.push(u.map(|u| u / dt));
+            out.y.push(Vec3::from_fn(|ax, _| z[ax] + g[ax]));
+            out.v.push(u.map(|u| u / dt).into());
             for ax in 0..3 {
                 let [f0, f1, f2, _] = step[ax];
                 let du = f0 + dm * f1 + km * f2 - kdt2 * z[ax] - ddt * u[ax];
@@ -350,13 +351,13 @@ impl Model {
                 u[ax] += du;
                 z[ax] += u[ax];
             }
-            out.a.push(a);
+            out.a.push(a.into());
         }
         out
     }
 
     /// `d` of a path against demo `i`'s raw target (trapezoid over unit time).
-    pub fn path_error(&self, i: usize, path: &[[f64; 3]]) -> f64 {
+    pub fn path_error(&self, i: usize, path: &[Vec3]) -> f64 {
         let target = &self.demos[i].y_raw;
         let n = target.len().min(path.len());
         let errs = path.iter().zip(target).map(|(p, t)| {

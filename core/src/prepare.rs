@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::demo::{RawDemo, median, stamp_intervals_s};
 use crate::error::{Error, Location, Result};
+use crate::geom::Vec3;
 use crate::savgol::SavGol;
 
 /// The most points a demo is resampled onto (1000 s at 1 kHz): more means
@@ -50,17 +51,17 @@ pub struct PreparedDemo {
     /// Points of the uniform resampling, `n0`.
     pub n0: usize,
     /// The first resampled raw sample, the shift applied to everything.
-    pub p0: [f64; 3],
+    pub p0: Vec3,
     /// The goal `g = y_raw(1)`.
-    pub goal: [f64; 3],
+    pub goal: Vec3,
     /// The raw (unsmoothed) path, the comparison target of `d`.
-    pub y_raw: Vec<[f64; 3]>,
+    pub y_raw: Vec<Vec3>,
     /// The smoothed path.
-    pub y: Vec<[f64; 3]>,
+    pub y: Vec<Vec3>,
     /// Its derivative with respect to unit time.
-    pub yd: Vec<[f64; 3]>,
+    pub yd: Vec<Vec3>,
     /// Its second derivative with respect to unit time.
-    pub ydd: Vec<[f64; 3]>,
+    pub ydd: Vec<Vec3>,
 }
 
 impl PreparedDemo {
@@ -109,16 +110,16 @@ pub fn interp(x: &[f64], xp: &[f64], fp: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-fn column(v: &[[f64; 3]], axis: usize) -> Vec<f64> {
+fn column(v: &[Vec3], axis: usize) -> Vec<f64> {
     v.iter().map(|p| p[axis]).collect()
 }
 
-fn zip3(cols: [Vec<f64>; 3]) -> Vec<[f64; 3]> {
+fn zip3(cols: [Vec<f64>; 3]) -> Vec<Vec3> {
     let [x, y, z] = cols;
     x.into_iter()
         .zip(y)
         .zip(z)
-        .map(|((x, y), z)| [x, y, z])
+        .map(|((x, y), z)| Vec3::new(x, y, z))
         .collect()
 }
 
@@ -175,7 +176,7 @@ pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
     let s = linspace(1.0, settings.grid_points);
     let query_t: Vec<f64> = s.iter().map(|s| s * total).collect();
 
-    let mut p0 = [0.0; 3];
+    let mut p0 = Vec3::zeros();
     let mut cols: [[Vec<f64>; 3]; 4] = Default::default();
     for axis in 0..3 {
         let resampled = interp(&grid_t, &t, &column(&positions, axis));

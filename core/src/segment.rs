@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::demo::RawDemo;
 use crate::error::{Error, Result};
+use crate::geom::Vec3;
 
 /// Settings of the segmentation.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -66,7 +67,7 @@ pub struct Segment {
 
 /// The hand's speed at each sample (time order), m/s, as the distance
 /// travelled over a window of about `window_s` centred on the sample.
-pub fn speeds(stamps_ns: &[i64], positions: &[[f64; 3]], window_s: f64) -> Vec<f64> {
+pub fn speeds(stamps_ns: &[i64], positions: &[Vec3], window_s: f64) -> Vec<f64> {
     let half = (window_s * 0.5e9) as i64;
     let n = stamps_ns.len();
     let (mut lo, mut hi) = (0, 0);

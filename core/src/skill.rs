@@ -12,6 +12,7 @@
 
 use crate::error::{Error, Result};
 use crate::generalise::{Mapping, Primitive, Scaling, check_gains};
+use crate::geom::Vec3;
 use crate::model::Model;
 
 /// The skill of a model's demos at one gain pair.
@@ -22,7 +23,7 @@ pub struct Skill {
     pub primitive: Primitive,
     /// Per-time sample SD (N - 1) of the members' mapped forcing terms, per
     /// axis; zeros for one demo.
-    pub forcing_sd: Vec<[f64; 3]>,
+    pub forcing_sd: Vec<Vec3>,
     /// The members' names, in order.
     pub demos: Vec<String>,
     /// The scaling the members were mapped with.
@@ -47,7 +48,7 @@ impl Skill {
         let displacement = mean3(
             parts
                 .iter()
-                .map(|p| std::array::from_fn(|a| p.goal[a] - p.y0[a])),
+                .map(|p| Vec3::from_fn(|a, _| p.goal[a] - p.y0[a])),
             nf,
         );
         let length = displacement.iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -61,7 +62,7 @@ impl Skill {
         let mappings: Vec<Mapping> = parts
             .iter()
             .map(|p| {
-                let own = std::array::from_fn(|a| p.goal[a] - p.y0[a]);
+                let own = Vec3::from_fn(|a, _| p.goal[a] - p.y0[a]);
                 Mapping::between(own, displacement, scaling).map_err(|e| match e {
                     Error::InvalidSetting(m) => Error::InvalidSetting(format!("{}: {m}", p.name)),
                     other => other,
@@ -69,7 +70,7 @@ impl Skill {
             })
             .collect::<Result<_>>()?;
         let n = parts[0].len();
-        let members: Vec<(Vec<[f64; 3]>, [f64; 3])> = parts
+        let members: Vec<(Vec<Vec3>, Vec3)> = parts
             .iter()
             .zip(&mappings)
             .map(|(p, m)| {
@@ -77,7 +78,7 @@ impl Skill {
                 (f, m.apply(p.v0))
             })
             .collect();
-        let mut mean = vec![[0.0; 3]; n];
+        let mut mean = vec![Vec3::zeros(); n];
         for (f, _) in &members {
             for (acc, v) in mean.iter_mut().zip(f) {
                 for a in 0..3 {
@@ -90,7 +91,7 @@ impl Skill {
         }
         let dt = 1.0 / (n - 1) as f64;
         let dt2 = dt * dt;
-        let mut forcing_sd = vec![[0.0; 3]; n];
+        let mut forcing_sd = vec![Vec3::zeros(); n];
         if count > 1 {
             for (f, _) in &members {
                 for ((acc, v), m) in forcing_sd.iter_mut().zip(f).zip(&mean) {
@@ -110,7 +111,8 @@ impl Skill {
             let mut w = [vec![0.0; b], vec![0.0; b], vec![0.0; b]];
             for (p, m) in parts.iter().zip(&mappings) {
                 for j in 0..b {
-                    let mapped = m.apply([p.weights[0][j], p.weights[1][j], p.weights[2][j]]);
+                    let mapped =
+                        m.apply(Vec3::new(p.weights[0][j], p.weights[1][j], p.weights[2][j]));
                     for a in 0..3 {
                         w[a][j] += mapped[a];
                     }
@@ -125,7 +127,7 @@ impl Skill {
             km,
             alpha_x: model.settings().alpha_x,
             origin,
-            y0: [0.0; 3],
+            y0: Vec3::zeros(),
             goal: displacement,
             v0,
             duration_s: duration,
@@ -145,8 +147,8 @@ impl Skill {
 }
 
 /// The mean of `values` (their sum, in order, over `n`).
-fn mean3(values: impl Iterator<Item = [f64; 3]>, n: f64) -> [f64; 3] {
-    let mut s = [0.0; 3];
+fn mean3(values: impl Iterator<Item = Vec3>, n: f64) -> Vec3 {
+    let mut s = Vec3::zeros();
     for v in values {
         for a in 0..3 {
             s[a] += v[a];

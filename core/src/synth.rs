@@ -66,7 +66,7 @@ pub fn reach_raw_demos(seed: u64, count: usize, epoch_ns: i64) -> Vec<crate::Raw
             file: "synth.mcap".into(),
             topic: format!("/demo_{i}"),
             stamps_ns: d.samples.iter().map(|s| s.0).collect(),
-            positions: d.samples.iter().map(|s| s.1).collect(),
+            positions: d.samples.iter().map(|s| s.1.into()).collect(),
             orientations: None,
             time_source: crate::TimeSource::HeaderStamp,
         })

@@ -179,7 +179,10 @@ fn truncated_files_fail_or_keep_their_complete_chunks_at_every_cut() {
                         let source = if d.topic == "/a" { &a } else { &b };
                         assert_eq!(
                             d.positions[..],
-                            source.iter().map(|s| s.1).collect::<Vec<_>>()[..d.positions.len()]
+                            source
+                                .iter()
+                                .map(|s| s.1.into())
+                                .collect::<Vec<dmpscope_core::geom::Vec3>>()[..d.positions.len()]
                         );
                     }
                 }
@@ -335,7 +338,8 @@ fn out_of_order_and_duplicated_stamps_sort_stably_keeping_the_first() {
     assert_eq!(demo.stamps_ns, stamps, "file order kept");
     let clean = reach(60);
     let (st, pos): (Vec<i64>, Vec<[f64; 3]>) = clean.iter().copied().unzip();
-    assert_eq!(demo.sorted_unique(), (st.clone(), pos.clone()));
+    let vecs: Vec<dmpscope_core::geom::Vec3> = pos.iter().map(|&p| p.into()).collect();
+    assert_eq!(demo.sorted_unique(), (st.clone(), vecs));
     let settings = PrepSettings::default();
     let mut from_file = prepare(demo, &settings).expect("prepare");
     let sorted = prepare(&raw_demo(&st, &pos), &settings).expect("prepare");

@@ -4,6 +4,7 @@
 mod golden_data;
 
 use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::geom::Vec3;
 use dmpscope_core::{
     Model, PrepSettings, Primitive, RawDemo, Scaling, Skill, Target, TimeSource, Unusable,
     build_model,
@@ -29,7 +30,7 @@ fn at_its_own_target_the_generalised_rollout_is_todays_to_the_bit() {
             let p0 = m.demos()[i].p0;
             for k in 0..old.y.len() {
                 let y: [f64; 3] = std::array::from_fn(|a| old.y[k][a] + p0[a]);
-                assert_eq!(new.unit.y[k], y, "y at {k}");
+                assert_eq!(new.unit.y[k], Vec3::from(y), "y at {k}");
                 assert_eq!(new.unit.v[k], old.v[k], "v at {k}");
                 assert_eq!(new.unit.a[k], old.a[k], "a at {k}");
             }
@@ -103,7 +104,7 @@ fn frame_scaling_with_a_rotated_goal_rotates_the_path() {
         };
         let turned = p
             .rollout(&Target {
-                goal: Some(new_goal),
+                goal: Some(new_goal.into()),
                 scaling: Scaling::Frame,
                 ..Target::default()
             })
@@ -133,8 +134,8 @@ fn the_skill_of_identical_demos_is_the_demo() {
         let skill = Skill::new(&same, DM, KM, scaling).expect("skill");
         let demo = Primitive::of_demo(&same, 0, DM, KM).expect("demo");
         let target = Target {
-            goal: Some([0.1, 0.5, 0.4]),
-            start: Some([0.2, -0.1, 0.0]),
+            goal: Some(Vec3::from([0.1, 0.5, 0.4])),
+            start: Some(Vec3::from([0.2, -0.1, 0.0])),
             duration_s: Some(2.0),
             scaling,
         };
@@ -170,7 +171,7 @@ fn the_skill_of_different_demos_has_a_band_and_reaches_its_goal() {
         .expect("rollout");
     let widest = out.band.iter().flatten().fold(0.0f64, |m, v| m.max(*v));
     assert!(widest > 1e-4, "the demos differ: {widest}");
-    assert_eq!(out.band[0], [0.0; 3]);
+    assert_eq!(out.band[0], Vec3::zeros());
     assert!(out.final_error < 0.02, "{}", out.final_error);
 }
 
@@ -196,7 +197,7 @@ fn bad_targets_name_the_argument() {
         assert!(e.contains("--duration"), "{e}");
     }
     let e = err(Target {
-        goal: Some([f64::NAN, 0.0, 0.0]),
+        goal: Some(Vec3::from([f64::NAN, 0.0, 0.0])),
         ..Target::default()
     });
     assert!(e.contains("--goal"), "{e}");
@@ -225,7 +226,7 @@ fn reach(delta: [f64; 3]) -> Model {
         file: "reach.mcap".into(),
         topic: "/hand".into(),
         stamps_ns: samples.iter().map(|s| s.0).collect(),
-        positions: samples.iter().map(|s| s.1).collect(),
+        positions: samples.iter().map(|s| s.1.into()).collect(),
         orientations: None,
         time_source: TimeSource::HeaderStamp,
     };
@@ -303,5 +304,5 @@ fn an_export_never_holds_nan() {
     let p = Primitive::of_demo(&m, 0, DM, KM).expect("demo");
     let out = p.rollout(&Target::default()).expect("rollout");
     let doc = dmp_document(&p, &out, ctx()).expect("written");
-    assert_eq!(doc.rollout.y[0], p.start_abs());
+    assert_eq!(Vec3::from(doc.rollout.y[0]), p.start_abs());
 }

@@ -4,6 +4,7 @@
 
 mod golden_data;
 
+use dmpscope_core::geom::Vec3;
 use dmpscope_core::{Generalised, Primitive, Scaling, Skill, Target};
 use golden_data::{f, golden, model};
 use serde_json::Value;
@@ -26,7 +27,7 @@ fn rows(v: &Value) -> Vec<[f64; 3]> {
 /// `|ours - golden| <= TOL * max(1, max |golden|)` over every sample and
 /// axis (docs/export.md's rule); returns the worst error over that scale.
 #[track_caller]
-fn compare(case: &str, what: &str, ours: &[[f64; 3]], golden: &[[f64; 3]], idx: &[usize]) -> f64 {
+fn compare(case: &str, what: &str, ours: &[Vec3], golden: &[[f64; 3]], idx: &[usize]) -> f64 {
     let scale = golden.iter().flatten().fold(1.0f64, |m, v| m.max(v.abs()));
     let mut worst = 0.0f64;
     for (row, &k) in golden.iter().zip(idx) {
@@ -57,8 +58,8 @@ fn generalised_rollouts_match_the_reference() {
             _ => Scaling::Paper,
         };
         let target = Target {
-            start: vec3(&case["start"]),
-            goal: vec3(&case["goal"]),
+            start: vec3(&case["start"]).map(Vec3::from),
+            goal: vec3(&case["goal"]).map(Vec3::from),
             duration_s: case["duration"].as_f64(),
             scaling,
         };
@@ -90,7 +91,11 @@ fn generalised_rollouts_match_the_reference() {
             }
         }
         let start = vec3(&case["start_used"]).expect("start_used");
-        assert_eq!(out.unit.y[0], start, "{name}: starts exactly at the start");
+        assert_eq!(
+            out.unit.y[0],
+            Vec3::from(start),
+            "{name}: starts exactly at the start"
+        );
         for (k, t) in idx.iter().zip(case["t"].as_array().expect("t")) {
             assert!(
                 (out.t[*k] - f(t)).abs() <= 1e-12 * f(t).max(1.0),

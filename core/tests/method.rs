@@ -46,7 +46,8 @@ fn log_grid(dm: (f64, f64, usize), km: (f64, f64, usize)) -> Grid {
     }
 }
 
-fn norm(v: [f64; 3]) -> f64 {
+fn norm(v: impl Into<[f64; 3]>) -> f64 {
+    let v: [f64; 3] = v.into();
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
@@ -91,18 +92,19 @@ fn dmp_demo(g: [f64; 3], v0: [f64; 3]) -> (PreparedDemo, [f64; 3]) {
     let [y, yd, ydd] = simulate(&x, g, v0, c);
     let (name, goal, y_raw) = (format!("dmp {g:?}"), y[1000], y.clone());
     let (duration_s, median_interval_s, n0, p0) = (1.0, 1e-3, 1001, [0.0; 3]);
+    let vecs = |v: Vec<[f64; 3]>| v.into_iter().map(Into::into).collect();
     let demo = PreparedDemo {
         name,
         n_samples: 1001,
         duration_s,
         median_interval_s,
         n0,
-        p0,
-        goal,
-        y_raw,
-        y,
-        yd,
-        ydd,
+        p0: p0.into(),
+        goal: goal.into(),
+        y_raw: vecs(y_raw),
+        y: vecs(y),
+        yd: vecs(yd),
+        ydd: vecs(ydd),
     };
     (demo, c)
 }
@@ -315,7 +317,9 @@ fn transformed(
         .iter()
         .map(|s| t0 + (s - first) * stretch)
         .collect();
-    let moved = |p: &[f64; 3]| [0, 1, 2].map(|ax| scale[ax] * p[ax] + shift[ax]);
+    let moved = |p: &dmpscope_core::geom::Vec3| {
+        dmpscope_core::geom::Vec3::from_fn(|ax, _| scale[ax] * p[ax] + shift[ax])
+    };
     let positions = base.positions.iter().map(moved).collect();
     RawDemo {
         stamps_ns,

@@ -254,7 +254,7 @@ fn sorting_and_cutting_keep_each_orientation_with_its_sample() {
         file: "d.mcap".into(),
         topic: "/d".into(),
         stamps_ns: order.iter().map(|&k| sample(k).0).collect(),
-        positions: order.iter().map(|&k| sample(k).1).collect(),
+        positions: order.iter().map(|&k| sample(k).1.into()).collect(),
         orientations: Some(
             order
                 .iter()

@@ -1,6 +1,7 @@
 //! The pipeline's policy for unusable demos, and `load_source` on what a
 //! user can name: bytes, a CSV, a folder, a rosbag2 `metadata.yaml`.
 
+use dmpscope_core::geom::Vec3;
 use dmpscope_core::io::{LoadOptions, SourceData, UpAxis, load_source};
 use dmpscope_core::{Error, Level, PrepSettings, RawDemo, TimeSource, Unusable, build_model};
 
@@ -21,7 +22,7 @@ fn short(name: &str) -> RawDemo {
         file: "short.mcap".into(),
         topic: "/short".into(),
         stamps_ns: (0..5).map(|k| k * 10_000_000).collect(),
-        positions: (0..5).map(|k| [0.0, 0.0, k as f64]).collect(),
+        positions: (0..5).map(|k| [0.0, 0.0, k as f64].into()).collect(),
         orientations: None,
         time_source: TimeSource::HeaderStamp,
     }
@@ -98,7 +99,7 @@ fn load_source_reads_csv_bytes_folders_and_metadata_yaml_alike() {
     let path = dir.join("take.csv");
     let b = load_source("take.csv", SourceData::Path(&path), &y_up).expect("path");
     assert_eq!(a, b);
-    assert_eq!(a.demos[0].positions[0], [-3.0, -1.0, 2.0]);
+    assert_eq!(a.demos[0].positions[0], Vec3::new(-3.0, -1.0, 2.0));
     // A folder without recordings is named in the error.
     let empty = dir.join("empty");
     std::fs::create_dir_all(&empty).expect("empty");

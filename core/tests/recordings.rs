@@ -511,7 +511,7 @@ fn a_fixed_frame_composes_tf_and_tf_static_into_one_frame() {
     // By default the tracker is relative to its parent, base.
     let own = tracker(None);
     for (p, (_, q)) in own.positions.iter().zip(&hand) {
-        assert_eq!(p, q);
+        assert_eq!(<[f64; 3]>::from(*p), *q);
     }
     // In world: turned 90 degrees and shifted, (x, y, z) -> (1 - y, x, z).
     let world = tracker(Some("world"));

@@ -25,7 +25,7 @@ fn raw(demos: &[dmpscope_core::synth::SynthDemo]) -> Vec<RawDemo> {
             file: "planted".into(),
             topic: format!("/demo_{i:02}"),
             stamps_ns: d.samples.iter().map(|s| s.0).collect(),
-            positions: d.samples.iter().map(|s| s.1).collect(),
+            positions: d.samples.iter().map(|s| s.1.into()).collect(),
             orientations: None,
             time_source: TimeSource::HeaderStamp,
         })

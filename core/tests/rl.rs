@@ -6,6 +6,7 @@
 //! PPO fails.
 
 use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::geom::Vec3;
 use dmpscope_core::io::load_bytes;
 use dmpscope_core::rl::env::{ACT, ActionMode, DmpEnv, EnvOptions, ExploreScale};
 use dmpscope_core::rl::loss::{Batch, actor_loss_grad, critic_loss_grad, log_prob};
@@ -52,7 +53,7 @@ fn one_decision_integrates_and_rewards_as_method_md_says() {
     }
     let step = env.step(&u);
     assert!(!step.done);
-    assert_eq!(env.position(), y);
+    assert_eq!(Vec3::from(env.position()), y);
     assert!(
         (step.reward - reward).abs() < 1e-15,
         "{} vs {reward}",
@@ -136,7 +137,7 @@ fn exploration_is_scaled_to_the_demos_acceleration_or_its_forcing_term() {
     let m = model();
     let d = &m.demos()[0];
     let (dm, km) = (32.6, 1000.0);
-    let rms = |xs: &[[f64; 3]], a: usize| {
+    let rms = |xs: &[Vec3], a: usize| {
         (xs.iter().map(|x| x[a] * x[a]).sum::<f64>() / xs.len() as f64).sqrt()
     };
     let accel = env(&m, dm, km);
@@ -192,7 +193,7 @@ fn bad_input_gets_clear_errors() {
     let n = raw.positions.len();
     for (k, p) in raw.positions.iter_mut().enumerate() {
         let t = k as f64 / (n - 1) as f64 * std::f64::consts::TAU;
-        *p = [0.1 * t.sin(), 0.1 * (1.0 - t.cos()), 0.0];
+        *p = Vec3::new(0.1 * t.sin(), 0.1 * (1.0 - t.cos()), 0.0);
     }
     let d = prepare(&raw, &PrepSettings::default()).expect("prepare");
     let loop_model = Model::new(vec![d], DmpSettings::default()).expect("model");

@@ -10,6 +10,7 @@ use std::io::Cursor;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use dmpscope_core::error::Location;
+use dmpscope_core::geom::Vec3;
 use dmpscope_core::io::ros2::StampedTransform;
 use dmpscope_core::io::{
     ChannelSchema, LoadOptions, Loaded, MessageDecoder, PoseSample, decoder_for, load_bytes,
@@ -485,7 +486,12 @@ fn every_format_loads_to_the_same_demos() {
             let stamps: Vec<i64> = want.iter().map(|s| s.0).collect();
             let positions: Vec<[f64; 3]> = want.iter().map(|s| s.1).collect();
             assert_eq!(demo.stamps_ns, stamps, "{}", demo.name);
-            assert_eq!(demo.positions, positions, "{}", demo.name);
+            assert_eq!(
+                demo.positions,
+                positions.iter().map(|&p| p.into()).collect::<Vec<Vec3>>(),
+                "{}",
+                demo.name
+            );
         }
     }
 }

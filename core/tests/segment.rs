@@ -52,7 +52,7 @@ fn continuous_take(count: usize, rest_s: f64) -> (RawDemo, Vec<(i64, i64)>) {
         file: "take.mcap".into(),
         topic: "/tracker".into(),
         stamps_ns: stamps,
-        positions,
+        positions: positions.into_iter().map(Into::into).collect(),
         orientations: None,
         time_source: TimeSource::HeaderStamp,
     };
@@ -107,7 +107,7 @@ fn a_take_that_never_rests_is_one_segment_and_bad_settings_are_errors() {
         file: "one.mcap".into(),
         topic: "/t".into(),
         stamps_ns: demos[0].samples.iter().map(|s| s.0).collect(),
-        positions: demos[0].samples.iter().map(|s| s.1).collect(),
+        positions: demos[0].samples.iter().map(|s| s.1.into()).collect(),
         orientations: None,
         time_source: TimeSource::HeaderStamp,
     };

@@ -6,6 +6,7 @@
 
 use std::sync::Arc;
 
+use dmpscope_core::geom::Vec3;
 use dmpscope_core::{Generalised, Model, Primitive, Scaling, Skill, Target};
 
 use crate::stage::Stage;
@@ -59,7 +60,7 @@ pub struct GenView {
     /// The run at the target.
     pub out: Generalised,
     /// Skills: the forcing terms' per-time SD.
-    pub forcing_sd: Option<Arc<Vec<[f64; 3]>>>,
+    pub forcing_sd: Option<Arc<Vec<Vec3>>>,
 }
 
 /// The key the stage was computed for (f64s by their bits).
@@ -77,7 +78,7 @@ pub(crate) struct GenKey {
 
 impl GenKey {
     pub(crate) fn new(model: u64, (dm, km): (f64, f64), spec: &GeneraliseSpec) -> Self {
-        let bits = |v: [f64; 3]| v.map(f64::to_bits);
+        let bits = |v: Vec3| [v.x, v.y, v.z].map(f64::to_bits);
         Self {
             model,
             dm: dm.to_bits(),
@@ -117,7 +118,7 @@ impl GenKey {
 }
 
 /// A primitive and, for a skill, its forcing terms' per-time SD.
-pub(crate) type Fitted = (Arc<Primitive>, Option<Arc<Vec<[f64; 3]>>>);
+pub(crate) type Fitted = (Arc<Primitive>, Option<Arc<Vec<Vec3>>>);
 
 /// The run of the stage's primitive at the spec's target.
 pub(crate) fn run(

@@ -4,6 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
+use dmpscope_core::geom::Vec3;
 use dmpscope_core::group::Grouping;
 use dmpscope_core::io::UpAxis;
 use dmpscope_session::{Command, Runner, Session, Settings, Source, StageRuns, Status};
@@ -295,7 +296,7 @@ fn a_new_target_recomputes_only_the_generalised_run() {
         let own = &session.paths()[2];
         let p0 = model.demos()[2].p0;
         for (a, b) in g.out.unit.y.iter().zip(&own.y) {
-            assert_eq!(*a, std::array::from_fn(|c| b[c] + p0[c]));
+            assert_eq!(*a, b + p0);
         }
     }
     assert_eq!(
@@ -305,11 +306,11 @@ fn a_new_target_recomputes_only_the_generalised_run() {
     );
     // A dragged goal: the run only, every frame.
     let goal = session.generalised().expect("on").expect("runs").out.goal;
-    spec.target.goal = Some([goal[0] - 0.1, goal[1], goal[2]]);
+    spec.target.goal = Some(Vec3::new(goal[0] - 0.1, goal[1], goal[2]));
     session.apply(Command::SetGeneralise(Some(spec)));
     assert_eq!(step(&mut session, &settings), (1, [0; 8]), "a new goal");
     let g = session.generalised().expect("on").expect("runs");
-    assert_eq!(g.out.goal, [goal[0] - 0.1, goal[1], goal[2]]);
+    assert_eq!(g.out.goal, Vec3::new(goal[0] - 0.1, goal[1], goal[2]));
     // New gains: the point and the run.
     settings.op = (12.0, 34.0);
     assert_eq!(

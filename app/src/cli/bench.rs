@@ -123,7 +123,11 @@ fn generalise_figures(model: &std::sync::Arc<dmpscope_core::Model>) -> anyhow::R
     let mut one_ms = Vec::new();
     for i in 0..2000 {
         let target = Target {
-            goal: Some([goal[0] - 1e-4 * i as f64, goal[1], goal[2]]),
+            goal: Some(dmpscope_core::geom::Vec3::new(
+                goal[0] - 1e-4 * i as f64,
+                goal[1],
+                goal[2],
+            )),
             scaling: if i % 2 == 0 {
                 Scaling::Paper
             } else {
@@ -152,7 +156,11 @@ fn generalise_figures(model: &std::sync::Arc<dmpscope_core::Model>) -> anyhow::R
         };
         let mut frame_ms = Vec::new();
         for i in 0..500 {
-            spec.target.goal = Some([goal[0] - 1e-4 * i as f64, goal[1], goal[2]]);
+            spec.target.goal = Some(dmpscope_core::geom::Vec3::new(
+                goal[0] - 1e-4 * i as f64,
+                goal[1],
+                goal[2],
+            ));
             let t = Instant::now();
             session.apply(Command::SetGeneralise(Some(spec)));
             session.update(&settings);

@@ -3,6 +3,7 @@
 //! MCAP (Foxglove poses plus ROS 2 trajectories) or the DMP export of
 //! `docs/export.md`.
 
+use dmpscope_core::geom::{Vec3, arrays};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -78,10 +79,10 @@ struct Run {
     skill: Option<Skill>,
 }
 
-fn vec3(what: &str, v: &Option<Vec<f64>>) -> anyhow::Result<Option<[f64; 3]>> {
+fn vec3(what: &str, v: &Option<Vec<f64>>) -> anyhow::Result<Option<Vec3>> {
     match v.as_deref() {
         None => Ok(None),
-        Some([x, y, z]) => Ok(Some([*x, *y, *z])),
+        Some([x, y, z]) => Ok(Some(Vec3::new(*x, *y, *z))),
         Some(other) => anyhow::bail!("{what} takes three numbers X Y Z, got {}", other.len()),
     }
 }
@@ -338,7 +339,7 @@ fn write_mcap(
                 .t
                 .iter()
                 .zip(&r.out.unit.y)
-                .map(|(t, p)| (start + (t * 1e9).round() as i64, *p))
+                .map(|(t, p)| (start + (t * 1e9).round() as i64, (*p).into()))
                 .collect(),
         });
         trajectories.push(TrajectoryExport {
@@ -349,9 +350,9 @@ fn write_mcap(
                 joint: "end_effector".to_owned(),
                 stamp_ns: start,
                 t: r.out.t.clone(),
-                y: r.out.unit.y.clone(),
-                v: r.out.v.clone(),
-                a: r.out.a.clone(),
+                y: arrays(&r.out.unit.y),
+                v: arrays(&r.out.v),
+                a: arrays(&r.out.a),
             },
         });
     }

@@ -5,6 +5,7 @@
 //! target dashed for comparison.
 
 use dmpscope_core::Rollout;
+use dmpscope_core::geom::Vec3 as Point;
 use eframe::egui::{self, Color32};
 use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, VLine};
 
@@ -29,7 +30,7 @@ pub struct OwnRun<'a> {
 }
 
 fn series(
-    values: &[[f64; 3]],
+    values: &[Point],
     axis: usize,
     time: impl Fn(usize) -> f64,
     value: impl Fn(f64) -> f64,

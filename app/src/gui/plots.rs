@@ -1,6 +1,7 @@
 //! Time plots of one demo against its regeneration at the operating point:
 //! position, velocity and acceleration per axis (the paper's Fig. 4).
 
+use dmpscope_core::geom::Vec3 as Point;
 use dmpscope_core::{PreparedDemo, Rollout};
 use eframe::egui::{self, Color32};
 use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints, VLine};
@@ -18,7 +19,7 @@ const MAX_POINTS: usize = 300;
 
 /// One plot: its label, the demo's series, the regenerated series and the
 /// factor from unit time to seconds.
-type Row<'a> = (&'a str, &'a [[f64; 3]], &'a [[f64; 3]], f64);
+type Row<'a> = (&'a str, &'a [Point], &'a [Point], f64);
 
 /// Shows the three plots for `demo` and its `rollout`, stacked, sharing the
 /// time axis (seconds of the demonstration), with a cursor at unit time
@@ -59,7 +60,7 @@ pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout, t: f64) -
                         .width(1.0),
                 );
                 for (ax, (name, colour)) in AXES.iter().enumerate() {
-                    let series = |v: &[[f64; 3]]| -> PlotPoints<'static> {
+                    let series = |v: &[Point]| -> PlotPoints<'static> {
                         let stride = v.len().div_ceil(MAX_POINTS).max(1);
                         let last = v.len().saturating_sub(1);
                         v.iter()

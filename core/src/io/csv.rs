@@ -6,7 +6,7 @@
 
 use crate::demo::{RawDemo, TimeSource};
 use crate::error::{Error, Location, Result};
-use crate::geom::quat_from_xyzw;
+use crate::geom::{Vec3, quat_from_xyzw};
 
 /// The topic CSV demos carry (there is one demo per file).
 pub const CSV_TOPIC: &str = "csv";
@@ -72,7 +72,7 @@ pub fn load_csv(label: &str, text: &str) -> Result<RawDemo> {
             });
         }
         stamps_ns.push(t_ns as i64);
-        positions.push([values[1], values[2], values[3]]);
+        positions.push(Vec3::new(values[1], values[2], values[3]));
         if let [.., qx, qy, qz, qw] = values[..] {
             orientations.push(quat_from_xyzw([qx, qy, qz, qw]));
         }

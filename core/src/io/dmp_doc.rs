@@ -205,7 +205,7 @@ pub struct DocContext<'a> {
     /// The frame of the positions.
     pub frame_id: String,
     /// The skill's per-time position SD, when a skill.
-    pub band: Option<Vec<[f64; 3]>>,
+    pub band: Option<Vec<crate::geom::Vec3>>,
     /// The scaling mode used.
     pub scaling: Scaling,
 }
@@ -267,11 +267,11 @@ pub fn dmp_document(
             y: wy,
             z: wz,
         },
-        initial_velocity: primitive.v0,
-        y0: primitive.start_abs(),
-        g: primitive.goal_abs(),
-        y0_new: out.start,
-        g_new: out.goal,
+        initial_velocity: primitive.v0.into(),
+        y0: primitive.start_abs().into(),
+        g: primitive.goal_abs().into(),
+        y0_new: out.start.into(),
+        g_new: out.goal.into(),
         scaling: ScalingDoc {
             mode: ctx.scaling.name(),
             matrix: out.mapping.matrix(),
@@ -286,11 +286,11 @@ pub fn dmp_document(
         },
         rollout: RolloutDoc {
             t: out.t.clone(),
-            y: out.unit.y.clone(),
-            v: out.v.clone(),
-            a: out.a.clone(),
+            y: crate::geom::arrays(&out.unit.y),
+            v: crate::geom::arrays(&out.v),
+            a: crate::geom::arrays(&out.a),
         },
-        rollout_sd: ctx.band,
+        rollout_sd: ctx.band.as_deref().map(crate::geom::arrays),
     };
     validate(&doc)?;
     Ok(doc)

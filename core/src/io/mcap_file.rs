@@ -14,7 +14,7 @@ use super::chunks::{ChunkError, for_each_record, lengths_fit};
 use super::{ChannelSchema, MessageDecoder, decoder_for};
 use crate::demo::{RawDemo, TimeSource};
 use crate::error::{Error, Location, Result};
-use crate::geom::Quat;
+use crate::geom::{Quat, Vec3};
 
 /// The largest single record the loader accepts; a declared length beyond it
 /// is an error, never an allocation.
@@ -135,7 +135,7 @@ struct Stream {
     tf: bool,
     stamps: Vec<Option<i64>>,
     log_times: Vec<i64>,
-    positions: Vec<[f64; 3]>,
+    positions: Vec<Vec3>,
     /// Each sample's orientation, already in dmpscope's z-up frame; `None`
     /// where the message has none or an unusable one.
     orientations: Vec<Option<Quat>>,
@@ -432,7 +432,9 @@ impl Collector<'_> {
             stream.tf |= sample.parent.is_some();
             stream.stamps.push(sample.stamp_ns);
             stream.log_times.push(log_time);
-            stream.positions.push(options.up.to_z_up(sample.position));
+            stream
+                .positions
+                .push(options.up.to_z_up(sample.position).into());
             let orientation = sample.orientation.and_then(crate::geom::quat_from_xyzw);
             stream
                 .orientations
@@ -671,7 +673,7 @@ fn in_fixed_frame(
         let stamp = s.stamps[i].unwrap_or(s.log_times[i]);
         let (p, q, h) = buffer.pose_in(fixed, frame, stamp)?;
         held += usize::from(h);
-        s.positions[i] = up.to_z_up(p);
+        s.positions[i] = up.to_z_up(p).into();
         s.orientations[i] = crate::geom::quat_from_xyzw(q).map(|q| up.orientation_to_z_up(q));
     }
     Ok((held > 0).then(|| {

@@ -174,7 +174,7 @@ fn folder_of_metadata(path: &Path) -> Option<&Path> {
 fn csv_demo(name: &str, text: &str, options: &LoadOptions) -> Result<SourceDemos> {
     let mut demo = load_csv(name, text)?;
     for p in &mut demo.positions {
-        *p = options.up.to_z_up(*p);
+        *p = options.up.to_z_up((*p).into()).into();
     }
     Ok(SourceDemos {
         demos: vec![demo],

@@ -29,6 +29,7 @@ use serde::{Deserialize, Serialize};
 
 use super::policy::Policy;
 use super::task::{Step, Task};
+use crate::geom::Vec3;
 use crate::{Error, Model, Result};
 
 /// Decisions per episode unless told otherwise.
@@ -142,14 +143,14 @@ pub struct DmpEnv {
     y: [f64; 3],
     v: [f64; 3],
     k: usize,
-    record: Option<(Vec<[f64; 3]>, Vec<f64>)>,
+    record: Option<(Vec<Vec3>, Vec<f64>)>,
 }
 
 /// A deterministic run of the policy's mean.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct GreedyRun {
     /// Positions on the demo's grid (start included), demo coordinates.
-    pub path: Vec<[f64; 3]>,
+    pub path: Vec<Vec3>,
     /// |y''| of every integration step.
     pub accel: Vec<f64>,
     /// Distance to the goal at the end, metres.
@@ -191,8 +192,10 @@ impl DmpEnv {
                 options.decisions
             ));
         }
-        let y0 = d.y_raw[0];
-        let goal = d.goal;
+        // The environment keeps its state as plain arrays (its own
+        // arithmetic, bit for bit the same natively and in the browser).
+        let y0: [f64; 3] = d.y_raw[0].into();
+        let goal: [f64; 3] = d.goal.into();
         let delta: [f64; 3] = std::array::from_fn(|a| goal[a] - y0[a]);
         let reach = norm3(delta);
         if reach.is_nan() || reach < MIN_REACH_M {
@@ -202,7 +205,9 @@ impl DmpEnv {
                 MIN_REACH_M * 1e3
             ));
         }
-        let fitted = model.forcing(demo, dm, km);
+        let arrays = |v: &[Vec3]| -> Vec<[f64; 3]> { v.iter().map(|p| (*p).into()).collect() };
+        let fitted = arrays(&model.forcing(demo, dm, km));
+        let ydd = arrays(&d.ydd);
         if fitted.iter().flatten().any(|f| !f.is_finite()) {
             return bad(format!(
                 "its fitted forcing term is not finite at D/M {dm}, K/M {km}"
@@ -210,7 +215,7 @@ impl DmpEnv {
         }
         let scale = delta.map(|d| ACTION_SCALE * d.abs().max(0.05));
         let sized = match options.explore {
-            ExploreScale::Acceleration => &d.ydd,
+            ExploreScale::Acceleration => &ydd,
             ExploreScale::Forcing => &fitted,
         };
         let explore = std::array::from_fn(|a| {
@@ -222,7 +227,7 @@ impl DmpEnv {
             km,
             mode: options.mode,
             y0,
-            v0: d.yd[0],
+            v0: d.yd[0].into(),
             goal,
             steps,
             hold: steps.div_ceil(options.decisions),
@@ -231,7 +236,7 @@ impl DmpEnv {
             fitted,
             explore,
             y: y0,
-            v: d.yd[0],
+            v: d.yd[0].into(),
             k: 0,
             record: None,
         };
@@ -313,7 +318,7 @@ impl DmpEnv {
             let a_norm = norm3(acc);
             reward += -1e-3 * a_norm - 1e-7 * norm3(f);
             if let Some((path, accel)) = &mut self.record {
-                path.push(self.y);
+                path.push(self.y.into());
                 accel.push(a_norm);
             }
             self.k += 1;
@@ -331,7 +336,7 @@ impl DmpEnv {
         env.record = Some((Vec::with_capacity(self.steps + 1), Vec::new()));
         let episode = policy.run(&mut env)?;
         let (mut path, accel) = env.record.take().unwrap_or_default();
-        path.insert(0, self.y0);
+        path.insert(0, self.y0.into());
         Ok(GreedyRun {
             path,
             accel,

@@ -185,7 +185,7 @@ pub fn raw_demo(stamps: &[i64], positions: &[[f64; 3]]) -> RawDemo {
         file: "demo.mcap".into(),
         topic: "/hand".into(),
         stamps_ns: stamps.to_vec(),
-        positions: positions.to_vec(),
+        positions: positions.iter().map(|&p| p.into()).collect(),
         orientations: None,
         time_source: TimeSource::HeaderStamp,
     }

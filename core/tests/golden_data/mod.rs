@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::geom::Vec3;
 use dmpscope_core::{Model, PrepSettings, RawDemo, TimeSource, prepare};
 use serde_json::Value;
 
@@ -61,7 +62,7 @@ pub fn raw_demos() -> Vec<RawDemo> {
                     .iter()
                     .map(|p| {
                         let p = fs(p);
-                        [p[0], p[1], p[2]]
+                        Vec3::new(p[0], p[1], p[2])
                     })
                     .collect(),
                 orientations: None,

@@ -4,6 +4,7 @@
 //! start to a goal over a duration, with the scaling mode, its peak speed,
 //! peak acceleration and end error, and Reset.
 
+use dmpscope_core::geom::Vec3 as Point;
 use dmpscope_core::{Model, Scaling, Target};
 use eframe::egui::{self, Color32};
 
@@ -12,24 +13,18 @@ use super::PanelCtx;
 use crate::session::{Command as SessionCommand, GenSource, GeneraliseSpec, Session};
 
 /// The source's own start, goal (absolute) and duration.
-pub fn own_target(model: &Model, source: GenSource) -> Option<([f64; 3], [f64; 3], f64)> {
+pub fn own_target(model: &Model, source: GenSource) -> Option<(Point, Point, f64)> {
     let demos = model.demos();
     match source {
-        GenSource::Demo(i) => demos.get(i).map(|d| {
-            (
-                d.p0,
-                std::array::from_fn(|a| d.p0[a] + d.goal[a]),
-                d.duration_s,
-            )
-        }),
+        GenSource::Demo(i) => demos.get(i).map(|d| (d.p0, d.p0 + d.goal, d.duration_s)),
         GenSource::Skill => {
             let n = demos.len().max(1) as f64;
-            let mean = |f: &dyn Fn(&dmpscope_core::PreparedDemo) -> [f64; 3]| -> [f64; 3] {
-                std::array::from_fn(|a| demos.iter().map(|d| f(d)[a]).sum::<f64>() / n)
+            let mean = |f: &dyn Fn(&dmpscope_core::PreparedDemo) -> Point| -> Point {
+                Point::from_fn(|a, _| demos.iter().map(|d| f(d)[a]).sum::<f64>() / n)
             };
             let start = mean(&|d| d.p0);
             let shift = mean(&|d| d.goal);
-            let goal = std::array::from_fn(|a| start[a] + shift[a]);
+            let goal = start + shift;
             let duration = demos.iter().map(|d| d.duration_s).sum::<f64>() / n;
             Some((start, goal, duration))
         }
@@ -37,7 +32,7 @@ pub fn own_target(model: &Model, source: GenSource) -> Option<([f64; 3], [f64; 3
 }
 
 /// Three coordinates as drag values; returns the new value when edited.
-fn triple(ui: &mut egui::Ui, label: &str, value: [f64; 3]) -> Option<[f64; 3]> {
+fn triple(ui: &mut egui::Ui, label: &str, value: Point) -> Option<Point> {
     let mut v = value;
     let mut changed = false;
     ui.horizontal(|ui| {
@@ -150,11 +145,7 @@ fn generalise_source_ui(ui: &mut egui::Ui, spec: &mut GeneraliseSpec, selected: 
 }
 
 /// The start, goal and duration, with the source's `own` ones as defaults, and Reset.
-fn generalise_target_ui(
-    ui: &mut egui::Ui,
-    spec: &mut GeneraliseSpec,
-    own: ([f64; 3], [f64; 3], f64),
-) {
+fn generalise_target_ui(ui: &mut egui::Ui, spec: &mut GeneraliseSpec, own: (Point, Point, f64)) {
     let (own_start, own_goal, own_duration) = own;
     let start = spec.target.start.unwrap_or(own_start);
     let goal = spec.target.goal.unwrap_or(own_goal);

@@ -7,6 +7,7 @@ mod camera;
 mod gpu;
 mod scene;
 
+use dmpscope_core::geom::Vec3 as Point;
 use std::sync::Arc;
 
 use dmpscope_core::{Model, Rollout};
@@ -20,13 +21,13 @@ use scene::{Frame, SceneGen};
 /// A run at a new target drawn over the demos, its start and goal draggable.
 pub struct GenOverlay<'a> {
     /// Absolute positions on the unit-time grid.
-    pub path: &'a [[f64; 3]],
+    pub path: &'a [Point],
     /// A skill's ±1 SD per axis (empty for a demo).
-    pub band: &'a [[f64; 3]],
+    pub band: &'a [Point],
     /// The start, absolute.
-    pub start: [f64; 3],
+    pub start: Point,
     /// The goal, absolute.
-    pub goal: [f64; 3],
+    pub goal: Point,
 }
 
 /// A handle of the overlay.
@@ -44,7 +45,7 @@ pub struct HandleMove {
     /// Which.
     pub handle: Handle,
     /// Where to, absolute metres.
-    pub to: [f64; 3],
+    pub to: Point,
 }
 
 /// How close (points) a press must be to a handle to grab it.
@@ -146,7 +147,7 @@ impl View3d {
         regen: &[Rollout],
         selected: usize,
         t: f64,
-        learned: Option<(usize, &[[f64; 3]])>,
+        learned: Option<(usize, &[Point])>,
         overlay: Option<&GenOverlay<'_>>,
     ) -> Option<HandleMove> {
         let size = ui.available_size().max(egui::vec2(120.0, 120.0));
@@ -265,7 +266,7 @@ impl View3d {
         let view_proj = camera.view_proj(aspect);
         let to_screen = |p: glam::Vec3| project(view_proj, rect, p);
         self.handles_on_screen = drawn.overlay.and_then(|ov| {
-            let screen = |p: [f64; 3]| to_screen(frame.local(p));
+            let screen = |p: Point| to_screen(frame.local(p));
             Some([screen(ov.start)?, screen(ov.goal)?])
         });
         let uniforms = gpu::Uniforms {
@@ -298,9 +299,8 @@ impl View3d {
         if response.drag_started_by(egui::PointerButton::Primary)
             && let Some(press) = ui.input(|i| i.pointer.press_origin())
         {
-            let distance = |p: [f64; 3]| {
-                to_screen(frame.local(p)).map_or(f32::INFINITY, |s| s.distance(press))
-            };
+            let distance =
+                |p: Point| to_screen(frame.local(p)).map_or(f32::INFINITY, |s| s.distance(press));
             let (ds, dg) = (distance(ov.start), distance(ov.goal));
             self.dragging = if dg <= GRAB_RADIUS && dg <= ds {
                 Some(Handle::Goal)
@@ -329,7 +329,7 @@ impl View3d {
             let reach = 10.0 * frame.bounds.radius();
             camera.hit_level(aspect, Vec2::new(rel.x, -rel.y), p.z, p, reach)
         }?;
-        let to = std::array::from_fn(|a| frame.origin[a] + f64::from(new_local[a]));
+        let to = Point::from_fn(|a, _| frame.origin[a] + f64::from(new_local[a]));
         Some(HandleMove { handle, to })
     }
 }
@@ -341,7 +341,7 @@ struct Drawn<'a> {
     regen: &'a [Rollout],
     selected: usize,
     t: f64,
-    learned: Option<(usize, &'a [[f64; 3]])>,
+    learned: Option<(usize, &'a [Point])>,
     overlay: Option<&'a GenOverlay<'a>>,
 }
 

@@ -4,6 +4,7 @@
 //! Coordinates are relative to a fixed scene origin so f32 keeps
 //! sub-millimetre precision far from the tracker's origin.
 
+use dmpscope_core::geom::Vec3 as Point;
 use dmpscope_core::{PreparedDemo, Rollout};
 use glam::Vec3;
 
@@ -52,7 +53,7 @@ pub struct SceneInput<'a> {
     pub pixels_per_point: f32,
     /// A path an RL agent learned: (demo index, positions in demo
     /// coordinates), drawn gold on top.
-    pub learned: Option<(usize, &'a [[f64; 3]])>,
+    pub learned: Option<(usize, &'a [Point])>,
     /// A run at a new target, drawn white with its start and goal handles.
     pub generalised: Option<SceneGen<'a>>,
 }
@@ -60,13 +61,13 @@ pub struct SceneInput<'a> {
 /// A generalised run in the scene (absolute positions).
 pub struct SceneGen<'a> {
     /// The path on the unit-time grid.
-    pub path: &'a [[f64; 3]],
+    pub path: &'a [Point],
     /// A skill's ±1 SD per axis (empty for a demo).
-    pub band: &'a [[f64; 3]],
+    pub band: &'a [Point],
     /// The start handle.
-    pub start: [f64; 3],
+    pub start: Point,
     /// The goal handle.
-    pub goal: [f64; 3],
+    pub goal: Point,
     /// The handle being dragged: 0 start, 1 goal.
     pub active: Option<usize>,
 }
@@ -76,7 +77,7 @@ pub struct SceneGen<'a> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
     /// World point at the scene origin.
-    pub origin: [f64; 3],
+    pub origin: Point,
     /// The demos' box in scene coordinates.
     pub bounds: Bounds,
     /// The mean displacement from start to goal.
@@ -86,27 +87,23 @@ pub struct Frame {
 impl Frame {
     /// The frame around all demos; `None` without finite points.
     pub fn of(demos: &[PreparedDemo]) -> Option<Self> {
-        let world = || {
-            demos
-                .iter()
-                .flat_map(|d| d.y_raw.iter().map(|p| add(d.p0, *p)))
-        };
+        let world = || demos.iter().flat_map(|d| d.y_raw.iter().map(|p| d.p0 + p));
         let first = world().find(|p| p.iter().all(|c| c.is_finite()))?;
-        let local = |p: [f64; 3]| to_vec(p, first);
+        let local = |p: Point| to_vec(p, first);
         let b = Bounds::around(world().map(local))?;
         let c = b.centre();
-        let origin = [
+        let origin = Point::new(
             first[0] + f64::from(c.x),
             first[1] + f64::from(c.y),
             first[2] + f64::from(c.z),
-        ];
+        );
         let bounds = Bounds {
             min: b.min - c,
             max: b.max - c,
         };
         let sum = demos
             .iter()
-            .map(|d| to_vec(d.goal, [0.0; 3]))
+            .map(|d| to_vec(d.goal, Point::zeros()))
             .filter(|v| v.is_finite())
             .fold(Vec3::ZERO, |a, b| a + b);
         let motion = sum / demos.len().max(1) as f32;
@@ -118,7 +115,7 @@ impl Frame {
     }
 
     /// A world point in scene coordinates.
-    pub fn local(&self, p: [f64; 3]) -> Vec3 {
+    pub fn local(&self, p: Point) -> Vec3 {
         to_vec(p, self.origin)
     }
 
@@ -147,11 +144,7 @@ impl Frame {
     }
 }
 
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-fn to_vec(p: [f64; 3], origin: [f64; 3]) -> Vec3 {
+fn to_vec(p: Point, origin: Point) -> Vec3 {
     Vec3::new(
         (p[0] - origin[0]) as f32,
         (p[1] - origin[1]) as f32,
@@ -235,13 +228,13 @@ pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
     let demo_paths: Vec<Vec<Vec3>> = input
         .demos
         .iter()
-        .map(|d| d.y_raw.iter().map(|p| frame.local(add(d.p0, *p))).collect())
+        .map(|d| d.y_raw.iter().map(|p| frame.local(d.p0 + p)).collect())
         .collect();
     let regen_paths: Vec<Vec<Vec3>> = input
         .demos
         .iter()
         .zip(input.regen)
-        .map(|(d, r)| r.y.iter().map(|p| frame.local(add(d.p0, *p))).collect())
+        .map(|(d, r)| r.y.iter().map(|p| frame.local(d.p0 + p)).collect())
         .collect();
     demo_paths_and_markers(&mut out, frame, input, &demo_paths, &regen_paths);
 
@@ -355,7 +348,7 @@ fn demo_paths_and_markers(
     if let Some((i, path)) = input.learned
         && let Some(d) = input.demos.get(i)
     {
-        let points: Vec<Vec3> = path.iter().map(|p| frame.local(add(d.p0, *p))).collect();
+        let points: Vec<Vec3> = path.iter().map(|p| frame.local(d.p0 + p)).collect();
         out.path(&points, [1.0, 0.84, 0.3, 1.0], 3.0 * ppp, 0.0);
     }
     for (i, d) in input
@@ -366,7 +359,7 @@ fn demo_paths_and_markers(
     {
         let c = rgba(input.colour_of(i), 1.0);
         let start = frame.local(d.p0);
-        let goal = frame.local(add(d.p0, d.goal));
+        let goal = frame.local(d.p0 + d.goal);
         // Start: a filled disc; goal: a ring.
         out.dot(start, DARK, 10.0 * ppp);
         out.dot(start, c, 7.0 * ppp);
@@ -379,7 +372,7 @@ fn demo_paths_and_markers(
 fn generalised_run(out: &mut SegmentList, frame: &Frame, g: &SceneGen<'_>, input: &SceneInput<'_>) {
     let ppp = input.pixels_per_point;
     let dash = frame.bounds.radius() / 30.0;
-    let local = |p: &[f64; 3]| frame.local(*p);
+    let local = |p: &Point| frame.local(*p);
     let path: Vec<Vec3> = g.path.iter().map(local).collect();
     if g.band.len() == g.path.len() {
         for sign in [-1.0, 1.0] {
@@ -387,7 +380,7 @@ fn generalised_run(out: &mut SegmentList, frame: &Frame, g: &SceneGen<'_>, input
                 .path
                 .iter()
                 .zip(g.band)
-                .map(|(p, b)| local(&std::array::from_fn(|a| p[a] + sign * b[a])))
+                .map(|(p, b)| local(&Point::from_fn(|a, _| p[a] + sign * b[a])))
                 .collect();
             out.path(&edge, [1.0, 1.0, 1.0, 0.35], 1.0 * ppp, dash);
         }
@@ -418,7 +411,7 @@ mod tests {
     #[test]
     fn grid_steps_are_1_2_5() {
         let frame = |span: f32| Frame {
-            origin: [0.0; 3],
+            origin: Point::zeros(),
             bounds: Bounds {
                 min: Vec3::ZERO,
                 max: Vec3::new(span, span / 2.0, 0.1),
