@@ -72,6 +72,15 @@ pub enum Error {
         /// What the reader said, in words.
         reason: String,
     },
+    /// The file is not a readable ROS 1 bag (bad magic, a corrupt chunk, a
+    /// malformed record).
+    #[error("{at}: not a readable ROS 1 bag: {reason}")]
+    Bag {
+        /// Where.
+        at: Location,
+        /// What is wrong, in words.
+        reason: String,
+    },
     /// A message could not be decoded with its schema.
     #[error("{at}: cannot decode message: {reason}")]
     Decode {

@@ -18,6 +18,8 @@ pub enum Reader {
     ZstdMcap,
     /// Plain `t,x,y,z` text.
     Csv,
+    /// A ROS 1 bag (format 2.0), read from its bytes.
+    Bag,
 }
 
 /// A file format dmpscope reads.
@@ -32,27 +34,40 @@ pub struct Format {
     /// The suffixes of its files that a folder of recordings is walked
     /// for (empty: none).
     pub walk: &'static [&'static str],
+    /// The bytes its files start with (empty: none), which identify a file
+    /// whose name does not.
+    pub magic: &'static [u8],
 }
 
 /// Every format, in the order they are tried by name.
-pub const FORMATS: [Format; 3] = [
+pub const FORMATS: [Format; 4] = [
     Format {
         name: "MCAP",
         suffixes: &[".mcap"],
         reader: Reader::Mcap,
         walk: &[".mcap"],
+        magic: b"\x89MCAP",
     },
     Format {
         name: "zstd-compressed MCAP",
         suffixes: &[".mcap.zstd", ".mcap.zst", ".zstd", ".zst"],
         reader: Reader::ZstdMcap,
         walk: &[".mcap.zstd", ".mcap.zst"],
+        magic: &[0x28, 0xB5, 0x2F, 0xFD],
     },
     Format {
         name: "CSV",
         suffixes: &[".csv"],
         reader: Reader::Csv,
         walk: &[],
+        magic: &[],
+    },
+    Format {
+        name: "ROS 1 bag",
+        suffixes: &[".bag"],
+        reader: Reader::Bag,
+        walk: &[".bag"],
+        magic: b"#ROSBAG",
     },
 ];
 
@@ -64,10 +79,19 @@ pub fn by_name(name: &str) -> Option<&'static Format> {
         .find(|f| f.suffixes.iter().any(|s| name.ends_with(s)))
 }
 
-/// The format of a file by its name, else MCAP (whose reader then says
-/// what the file is not, by its magic bytes).
-pub fn detect(name: &str) -> &'static Format {
-    by_name(name).unwrap_or(&FORMATS[0])
+/// The format whose magic bytes `head` (a file's first bytes) starts with.
+pub fn by_magic(head: &[u8]) -> Option<&'static Format> {
+    FORMATS
+        .iter()
+        .find(|f| !f.magic.is_empty() && head.starts_with(f.magic))
+}
+
+/// The format of a file by its name, else by its first bytes, else MCAP
+/// (whose reader then says what the file is not, by its magic bytes).
+pub fn detect(name: &str, head: &[u8]) -> &'static Format {
+    by_name(name)
+        .or_else(|| by_magic(head))
+        .unwrap_or(&FORMATS[0])
 }
 
 /// Whether a file in a folder of recordings is read.
@@ -113,23 +137,35 @@ mod tests {
             Some(Reader::ZstdMcap)
         );
         assert_eq!(by_name("t.csv").map(|f| f.reader), Some(Reader::Csv));
+        assert_eq!(by_name("run.BAG").map(|f| f.reader), Some(Reader::Bag));
         assert_eq!(by_name("notes.txt"), None);
-        assert_eq!(detect("upload").reader, Reader::Mcap);
-        assert_eq!(detect("notes.txt").reader, Reader::Mcap);
+        assert_eq!(detect("upload", b"").reader, Reader::Mcap);
+        assert_eq!(detect("notes.txt", b"").reader, Reader::Mcap);
+        // A file no name identifies, by its first bytes.
+        assert_eq!(detect("upload", b"#ROSBAG V2.0\n").reader, Reader::Bag);
+        assert_eq!(
+            detect("upload", &[0x28, 0xB5, 0x2F, 0xFD, 0]).reader,
+            Reader::ZstdMcap
+        );
+        assert_eq!(detect("upload", b"\x89MCAP0\r\n").reader, Reader::Mcap);
     }
 
     #[test]
-    fn folders_walk_mcap_files_plain_or_compressed_only() {
+    fn folders_walk_mcap_files_plain_or_compressed_and_bags() {
         assert!(walked(Path::new("/x/run_0.mcap")));
         assert!(walked(Path::new("/x/run_0.MCAP.zstd")));
         assert!(walked(Path::new("/x/run_0.mcap.zst")));
         assert!(!walked(Path::new("/x/notes.zst")));
         assert!(!walked(Path::new("/x/t.csv")));
+        assert!(walked(Path::new("/x/demo_3.bag")));
         assert!(!walked(Path::new("/x/metadata.yaml")));
     }
 
     #[test]
     fn dialogs_offer_each_extension_once() {
-        assert_eq!(dialog_extensions(), ["mcap", "zstd", "zst", "csv", "yaml"]);
+        assert_eq!(
+            dialog_extensions(),
+            ["mcap", "zstd", "zst", "csv", "bag", "yaml"]
+        );
     }
 }

@@ -9,6 +9,7 @@
 
 pub mod cdr;
 pub mod chunks;
+pub(crate) mod collect;
 pub mod csv;
 pub mod dmp_doc;
 pub mod export;
@@ -20,6 +21,7 @@ pub mod mcap_file;
 pub mod ros1;
 pub mod ros2;
 pub mod ros_traj;
+pub mod rosbag1;
 pub mod rosbag2;
 pub mod source;
 pub mod write;

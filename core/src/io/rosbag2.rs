@@ -34,7 +34,8 @@ pub enum Folder {
 /// Whether a path names a file a folder of recordings is walked for (the
 /// registry's [`formats::walked`]: MCAP, plain or zstd-compressed).
 pub fn is_mcap(path: &Path) -> bool {
-    formats::walked(path)
+    formats::by_name(&path.to_string_lossy())
+        .is_some_and(|f| matches!(f.reader, Reader::Mcap | Reader::ZstdMcap))
 }
 
 /// Whether a file name says zstd-compressed MCAP.
@@ -55,7 +56,7 @@ pub fn classify(folder: &Path) -> Result<Folder> {
         let path = entry.map_err(io)?.path();
         if path.is_dir() {
             folders.push(path);
-        } else if is_mcap(&path) {
+        } else if formats::walked(&path) {
             files.push(path);
         } else if path
             .extension()
@@ -95,7 +96,7 @@ pub fn classify(folder: &Path) -> Result<Folder> {
             }
             return Ok(Folder::Bag(bag));
         }
-        if !files.is_empty() {
+        if !files.is_empty() && files.iter().all(|f| is_mcap(f)) {
             return Ok(Folder::Bag(by_split_index(files)));
         }
     }
@@ -107,7 +108,7 @@ pub fn classify(folder: &Path) -> Result<Folder> {
             "holds a rosbag2 recording in SQLite (.db3), which dmpscope does not read: \
              convert it with `ros2 bag convert` to MCAP storage"
         } else {
-            "folder holds no .mcap file"
+            "folder holds no .mcap file (nor .mcap.zstd, nor ROS 1 .bag)"
         };
         return Err(Error::Source {
             path: folder.display().to_string(),

@@ -9,6 +9,7 @@ use std::path::Path;
 use super::csv::load_csv;
 use super::formats::{self, Reader};
 use super::mcap_file::{LoadOptions, Loaded, load_bytes_with};
+use super::rosbag1::load_bag_bytes;
 use super::rosbag2::{self, Folder, ROSBAG2_METADATA};
 use crate::arrange::{Arrangement, Overrides, arrange};
 use crate::demo::RawDemo;
@@ -52,7 +53,7 @@ pub fn load_streams(
     options: &LoadOptions,
 ) -> Result<SourceDemos> {
     match data {
-        SourceData::Bytes(bytes) => match formats::detect(name).reader {
+        SourceData::Bytes(bytes) => match formats::detect(name, bytes).reader {
             Reader::Csv => {
                 let text = std::str::from_utf8(bytes).map_err(|e| Error::Source {
                     path: name.to_owned(),
@@ -71,6 +72,7 @@ pub fn load_streams(
                 Ok(from_mcap(name, load_bytes_with(name, &inflated, options)?))
             }
             Reader::Mcap => Ok(from_mcap(name, load_bytes_with(name, bytes, options)?)),
+            Reader::Bag => Ok(from_mcap(name, load_bag_bytes(name, bytes, options)?)),
         },
         SourceData::Path(path) => {
             let path = folder_of_metadata(path).unwrap_or(path);
@@ -88,9 +90,7 @@ pub fn load_streams(
                     })?;
                     csv_demo(name, &text, options)
                 }
-                // MCAP, plain or compressed (rosbag2's reader tells them
-                // apart), and what no name identifies.
-                _ => Ok(from_mcap(name, rosbag2::read_file(path, name, options)?)),
+                _ => Ok(from_mcap(name, read_file(path, name, options)?)),
             }
         }
     }
@@ -129,7 +129,7 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
             let mut out = SourceDemos::default();
             for file in files {
                 let label = file.display().to_string();
-                let loaded = from_mcap(&label, rosbag2::read_file(&file, &label, options)?);
+                let loaded = from_mcap(&label, read_file(&file, &label, options)?);
                 out.demos.extend(loaded.demos);
                 out.notices.extend(loaded.notices);
                 out.skipped.extend(loaded.skipped);
@@ -163,6 +163,28 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
     }
 }
 
+/// Reads one recording file: a ROS 1 bag (by its name or its first bytes)
+/// from its bytes, else MCAP, plain or compressed (rosbag2's reader tells
+/// them apart), which also says what a file of no known format is not.
+fn read_file(path: &Path, label: &str, options: &LoadOptions) -> Result<Loaded> {
+    let io = |reason| Error::Io {
+        file: label.to_owned(),
+        reason,
+    };
+    let mut head = [0u8; 16];
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| std::io::Read::read(&mut f, &mut head))
+        .map_err(io)?;
+    let format = formats::by_name(label)
+        .or_else(|| formats::by_name(&path.to_string_lossy()))
+        .or_else(|| formats::by_magic(&head[..n]));
+    if format.is_some_and(|f| f.reader == Reader::Bag) {
+        let bytes = std::fs::read(path).map_err(io)?;
+        return load_bag_bytes(label, &bytes, options);
+    }
+    rosbag2::read_file(path, label, options)
+}
+
 /// A path naming a rosbag2 folder's `metadata.yaml` stands for the folder.
 fn folder_of_metadata(path: &Path) -> Option<&Path> {
     let is_metadata = path
@@ -175,6 +197,9 @@ fn csv_demo(name: &str, text: &str, options: &LoadOptions) -> Result<SourceDemos
     let mut demo = load_csv(name, text)?;
     for p in &mut demo.positions {
         *p = options.up.to_z_up((*p).into()).into();
+    }
+    for q in demo.orientations.iter_mut().flatten() {
+        *q = options.up.orientation_to_z_up(*q);
     }
     Ok(SourceDemos {
         demos: vec![demo],
