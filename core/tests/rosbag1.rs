@@ -147,3 +147,24 @@ fn no_cut_or_flipped_byte_panics() {
         .expect_err("format 1.2");
     assert!(err.to_string().contains("format 1"), "{err}");
 }
+
+#[test]
+fn every_ros1_pose_type_gives_the_same_motion() {
+    let reach = streams(&bags().join("reach/reach_1.bag"));
+    let controller = reach
+        .iter()
+        .find(|d| d.topic == "/vive/controller")
+        .expect("controller");
+    let types = streams(&bags().join("types.bag"));
+    let topics: Vec<&str> = types.iter().map(topic).collect();
+    assert_eq!(topics, ["/cov", "/odom", "/point", "/transform:tracker"]);
+    for d in &types {
+        assert_eq!(d.stamps_ns, controller.stamps_ns, "{}", d.name);
+        assert_eq!(d.positions, controller.positions, "{}", d.name);
+        if d.topic == "/point" {
+            assert!(d.orientations.is_none());
+        } else {
+            assert_eq!(d.orientations, controller.orientations, "{}", d.name);
+        }
+    }
+}

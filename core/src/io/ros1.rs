@@ -3,9 +3,10 @@
 //! are a u32 length (no NUL) and the bytes, `time` is u32 seconds and u32
 //! nanoseconds, `std_msgs/Header` is u32 seq, time stamp, string frame_id.
 //!
-//! Read: `geometry_msgs/PoseStamped` (one pose per message) and
-//! `tf2_msgs/TFMessage` (also the identical `tf/tfMessage`; one pose per
-//! transform, keyed by child frame). The `encode_*` functions are the
+//! Read: `geometry_msgs/PoseStamped`, `PoseWithCovarianceStamped`,
+//! `PointStamped`, `TransformStamped` and `nav_msgs/Odometry` (one pose per
+//! message), and `tf2_msgs/TFMessage` (also the identical `tf/tfMessage`;
+//! one pose per transform, keyed by child frame). The `encode_*` functions are the
 //! inverses, for fixtures and tests.
 
 use std::borrow::Cow;
@@ -81,6 +82,12 @@ float64 w
 pub fn decoder(schema_name: &str) -> Option<Box<dyn MessageDecoder>> {
     match schema_name {
         "geometry_msgs/PoseStamped" => Some(Box::new(SinglePose(decode_pose_stamped))),
+        "geometry_msgs/PoseWithCovarianceStamped" => {
+            Some(Box::new(SinglePose(decode_pose_with_covariance_stamped)))
+        }
+        "geometry_msgs/PointStamped" => Some(Box::new(SinglePose(decode_point_stamped))),
+        "geometry_msgs/TransformStamped" => Some(Box::new(TransformStampedDecoder)),
+        "nav_msgs/Odometry" => Some(Box::new(SinglePose(decode_odometry))),
         "tf2_msgs/TFMessage" | "tf/tfMessage" => Some(Box::new(TfMessageDecoder)),
         _ => None,
     }
@@ -148,6 +155,26 @@ impl<'a> Reader<'a> {
         ])
     }
 
+    /// `geometry_msgs/Pose`: the position and the orientation.
+    fn pose(&mut self) -> Result<([f64; 3], [f64; 4]), String> {
+        let p = self.vec3(["pose.position.x", "pose.position.y", "pose.position.z"])?;
+        let q = self.vec4([
+            "pose.orientation.x",
+            "pose.orientation.y",
+            "pose.orientation.z",
+            "pose.orientation.w",
+        ])?;
+        Ok((p, q))
+    }
+
+    /// `n` float64 fields read past.
+    fn skip_f64s(&mut self, n: usize, what: &str) -> Result<(), String> {
+        for _ in 0..n {
+            self.f64(what)?;
+        }
+        Ok(())
+    }
+
     /// Four float64 fields (a quaternion `[x, y, z, w]`).
     fn vec4(&mut self, names: [&str; 4]) -> Result<[f64; 4], String> {
         Ok([
@@ -193,13 +220,7 @@ impl<'a> Reader<'a> {
 pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String> {
     let mut r = Reader::new(message);
     let stamp_ns = r.header()?;
-    let position = r.vec3(["pose.position.x", "pose.position.y", "pose.position.z"])?;
-    let orientation = r.vec4([
-        "pose.orientation.x",
-        "pose.orientation.y",
-        "pose.orientation.z",
-        "pose.orientation.w",
-    ])?;
+    let (position, orientation) = r.pose()?;
     Ok(PoseSample {
         key: None,
         stamp_ns,
@@ -207,6 +228,66 @@ pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String
         orientation: Some(orientation),
         ..PoseSample::default()
     })
+}
+
+/// Decodes ROS 1 `geometry_msgs/PoseWithCovarianceStamped`: header, the
+/// pose, then the 36 covariance entries (read past, but they must be there).
+pub fn decode_pose_with_covariance_stamped(message: &[u8]) -> Result<PoseSample<'static>, String> {
+    let mut r = Reader::new(message);
+    let stamp_ns = r.header()?;
+    let (position, orientation) = r.pose()?;
+    r.skip_f64s(36, "pose.covariance")?;
+    Ok(PoseSample {
+        key: None,
+        stamp_ns,
+        position,
+        orientation: Some(orientation),
+        ..PoseSample::default()
+    })
+}
+
+/// Decodes ROS 1 `geometry_msgs/PointStamped`: header, then the point (no
+/// orientation).
+pub fn decode_point_stamped(message: &[u8]) -> Result<PoseSample<'static>, String> {
+    let mut r = Reader::new(message);
+    let stamp_ns = r.header()?;
+    let position = r.vec3(["point.x", "point.y", "point.z"])?;
+    Ok(PoseSample {
+        key: None,
+        stamp_ns,
+        position,
+        ..PoseSample::default()
+    })
+}
+
+/// Decodes ROS 1 `nav_msgs/Odometry`: header, child frame id, the pose
+/// with covariance (the sample), then the twist with covariance (read past).
+pub fn decode_odometry(message: &[u8]) -> Result<PoseSample<'static>, String> {
+    let mut r = Reader::new(message);
+    let stamp_ns = r.header()?;
+    r.string("child_frame_id")?;
+    let (position, orientation) = r.pose()?;
+    r.skip_f64s(36, "pose.covariance")?;
+    r.skip_f64s(6 + 36, "twist")?;
+    Ok(PoseSample {
+        key: None,
+        stamp_ns,
+        position,
+        orientation: Some(orientation),
+        ..PoseSample::default()
+    })
+}
+
+/// The decoder of ROS 1 `geometry_msgs/TransformStamped` (one pose, keyed
+/// by its child frame).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TransformStampedDecoder;
+
+impl MessageDecoder for TransformStampedDecoder {
+    fn decode(&mut self, data: &[u8], out: &mut dyn FnMut(PoseSample<'_>)) -> Result<(), String> {
+        out(Reader::new(data).transform_stamped()?);
+        Ok(())
+    }
 }
 
 /// Decodes ROS 1 `tf2_msgs/TFMessage`: a u32 count, then that many

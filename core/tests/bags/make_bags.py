@@ -15,6 +15,8 @@ PoseStamped, turning as it goes), each with /tf (base -> tracker) and
                               short (a recording that was killed)
   odd/corrupt.bag             reach_3 (lz4) with bytes of its first chunk
                               flipped
+  types.bag                   reach 1 as PoseWithCovarianceStamped,
+                              PointStamped, TransformStamped and Odometry
 """
 
 import math
@@ -112,6 +114,50 @@ def write(path, k, compression):
                 writer.write(button_c, stamp, store.serialize_ros1(button, "my_msgs/msg/Button"))
 
 
+def write_types(path, k):
+    """Reach k in the other pose types of ROS 1, one topic each."""
+    store = typestore()
+    T = store.types
+    stamps, poses = demo(k)
+    path.unlink(missing_ok=True)
+    with Writer(path) as writer:
+        names = {
+            "/cov": "geometry_msgs/msg/PoseWithCovarianceStamped",
+            "/point": "geometry_msgs/msg/PointStamped",
+            "/transform": "geometry_msgs/msg/TransformStamped",
+            "/odom": "nav_msgs/msg/Odometry",
+        }
+        conns = {t: writer.add_connection(t, m, typestore=store) for t, m in names.items()}
+        for stamp, (p, q) in zip(stamps, poses):
+            point = T["geometry_msgs/msg/Point"](x=p[0], y=p[1], z=p[2])
+            quat = T["geometry_msgs/msg/Quaternion"](x=q[0], y=q[1], z=q[2], w=q[3])
+            pose = T["geometry_msgs/msg/Pose"](position=point, orientation=quat)
+            cov = T["geometry_msgs/msg/PoseWithCovariance"](pose=pose, covariance=np.eye(6).ravel() * 1e-6)
+            twist = T["geometry_msgs/msg/TwistWithCovariance"](
+                twist=T["geometry_msgs/msg/Twist"](
+                    linear=T["geometry_msgs/msg/Vector3"](x=0.1, y=0.0, z=0.0),
+                    angular=T["geometry_msgs/msg/Vector3"](x=0.0, y=0.0, z=0.2),
+                ),
+                covariance=np.zeros(36),
+            )
+            messages = {
+                "/cov": T["geometry_msgs/msg/PoseWithCovarianceStamped"](header=header(store, stamp, "base"), pose=cov),
+                "/point": T["geometry_msgs/msg/PointStamped"](header=header(store, stamp, "base"), point=point),
+                "/transform": T["geometry_msgs/msg/TransformStamped"](
+                    header=header(store, stamp, "base"),
+                    child_frame_id="tracker",
+                    transform=T["geometry_msgs/msg/Transform"](
+                        translation=T["geometry_msgs/msg/Vector3"](x=p[0], y=p[1], z=p[2]), rotation=quat
+                    ),
+                ),
+                "/odom": T["nav_msgs/msg/Odometry"](
+                    header=header(store, stamp, "base"), child_frame_id="tracker", pose=cov, twist=twist
+                ),
+            }
+            for topic, msg in messages.items():
+                writer.write(conns[topic], stamp, store.serialize_ros1(msg, names[topic]))
+
+
 def main():
     compressions = ["none", "bz2", "lz4"]
     converted = HERE / "converted"
@@ -125,6 +171,7 @@ def main():
             [Path(sys.executable).parent / "rosbags-convert", "--src", bag, "--dst", converted / f"reach_{k}", "--dst-storage", "mcap"],
             check=True,
         )
+    write_types(HERE / "types.bag", 1)
     # Killed while recording: no index, the last chunk cut short.
     data = (HERE / "reach" / "reach_1.bag").read_bytes()
     body = bytearray(data)
