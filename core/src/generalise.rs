@@ -283,7 +283,10 @@ impl Primitive {
         let v: Vec<Vec3> = unit.v.iter().map(|v| v.map(|c| c / duration)).collect();
         let dur2 = duration * duration;
         let a: Vec<Vec3> = unit.a.iter().map(|a| a.map(|c| c / dur2)).collect();
-        let finite = |rows: &[Vec3]| rows.iter().all(|r| r.iter().all(|c| c.is_finite()));
+        let finite = |rows: &[Vec3]| {
+            rows.iter()
+                .all(|r| r.x.is_finite() && r.y.is_finite() && r.z.is_finite())
+        };
         if !(finite(&unit.y) && finite(&v) && finite(&a) && finite(&band)) {
             return Err(Error::InvalidSetting(format!(
                 "{}: the motion diverges at D/M {} and K/M {} over {duration} s (its numbers \
@@ -345,24 +348,27 @@ impl Primitive {
         let dt = self.dt();
         let dt2 = dt * dt;
         let (ddt, kdt2) = (self.dm * dt, self.km * dt2);
-        let mut z: Vec3 = Vec3::from_fn(|a, _| y0[a] - g[a]);
-        let mut u: Vec3 = v0.map(|v| v * dt);
+        // The state as plain arrays: the loop then compiles as the model's.
+        let g: [f64; 3] = g.into();
+        let mut z: [f64; 3] = std::array::from_fn(|a| y0[a] - g[a]);
+        let mut u: [f64; 3] = v0.map(|v| v * dt).into();
         let mut out = Rollout {
             y: Vec::with_capacity(n),
             v: Vec::with_capacity(n),
             a: Vec::with_capacity(n),
         };
         for f in fdt2 {
-            let mut acc = Vec3::zeros();
-            out.y.push(Vec3::from_fn(|a, _| z[a] + g[a]));
-            out.v.push(u.map(|u| u / dt));
+            let f: [f64; 3] = (*f).into();
+            let mut acc = [0.0; 3];
+            out.y.push(Vec3::new(z[0] + g[0], z[1] + g[1], z[2] + g[2]));
+            out.v.push(Vec3::new(u[0] / dt, u[1] / dt, u[2] / dt));
             for a in 0..3 {
                 let du = f[a] - kdt2 * z[a] - ddt * u[a];
                 acc[a] = du / dt2;
                 u[a] += du;
                 z[a] += u[a];
             }
-            out.a.push(acc);
+            out.a.push(acc.into());
         }
         out
     }
