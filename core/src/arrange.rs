@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use crate::demo::RawDemo;
 use crate::error::Result;
 use crate::gaps::{self, GapPolicy};
-use crate::group::{Grouping, group};
+use crate::group::{Grouping, group_noting};
 use crate::notice::Notice;
 use crate::segment::{SegmentSettings, find_segments};
 
@@ -223,7 +223,9 @@ pub fn arrange(
         }
     }
     let (owners, parts): (Vec<usize>, Vec<RawDemo>) = chosen.into_iter().unzip();
-    out.demos = group(parts, &how.demos)?;
+    let (demos, said) = group_noting(parts, &how.demos)?;
+    out.demos = demos;
+    out.notices.extend(said);
     if !matches!(how.demos, Grouping::PerTopic) {
         // Segments and per-file choices no longer map one-to-one to parts.
         for i in owners {

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::demo::RawDemo;
 use crate::error::Result;
+use crate::notice::Notice;
 use crate::segment::{SegmentSettings, split};
 
 /// How loaded streams become demonstrations.
@@ -25,6 +26,43 @@ pub enum Grouping {
 
 /// Applies a grouping to streams in load order (files, then names).
 pub fn group(streams: Vec<RawDemo>, grouping: &Grouping) -> Result<Vec<RawDemo>> {
+    group_noting(streams, grouping).map(|(demos, _)| demos)
+}
+
+/// [`group`], with a notice for every recording whose segments were not
+/// all kept (`--segments`).
+pub fn group_noting(
+    streams: Vec<RawDemo>,
+    grouping: &Grouping,
+) -> Result<(Vec<RawDemo>, Vec<Notice>)> {
+    let mut notices = Vec::new();
+    if let Grouping::Segmented(settings) = grouping {
+        let mut out = Vec::new();
+        for s in &streams {
+            let all = split(s, settings)?;
+            let n = all.len();
+            let kept = settings.keep.pick(all);
+            if kept.len() < n {
+                notices.push(Notice::info(format!(
+                    "{}: {}: {n} segments, kept {} (--segments {}): {}",
+                    s.file,
+                    s.topic,
+                    kept.len(),
+                    settings.keep.name(),
+                    kept.iter()
+                        .map(|d| d.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )));
+            }
+            out.extend(kept);
+        }
+        return Ok((out, notices));
+    }
+    group_whole(streams, grouping).map(|d| (d, notices))
+}
+
+fn group_whole(streams: Vec<RawDemo>, grouping: &Grouping) -> Result<Vec<RawDemo>> {
     match grouping {
         Grouping::PerTopic => Ok(streams),
         Grouping::PerFile => {

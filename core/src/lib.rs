@@ -45,6 +45,7 @@ pub mod prepare;
 pub mod presets;
 pub mod quantity;
 pub mod report;
+pub mod rest;
 pub mod rl;
 pub mod savgol;
 pub mod segment;
@@ -53,6 +54,7 @@ pub mod skill;
 pub mod synth;
 pub mod text;
 pub mod tf;
+pub mod units;
 
 pub use demo::{DemoInfo, RawDemo, TimeSource};
 pub use error::{Error, Result};

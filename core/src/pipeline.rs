@@ -9,7 +9,7 @@ use crate::dmp::DmpSettings;
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::notice::Notice;
-use crate::prepare::{PrepSettings, prepare};
+use crate::prepare::{PrepSettings, PreparedDemo, prepare};
 
 /// What to do with a demonstration that cannot be prepared (too few samples,
 /// a non-finite value, stamps that ask for too many points). There is no
@@ -64,6 +64,7 @@ pub fn build_model<'a>(
     if prepared.is_empty() {
         return Err(Error::NoUsableDemo { reasons });
     }
+    notices.extend(prepared.iter().filter_map(|p| short_window(p, prep)));
     if prepared.len() == 1 {
         notices.push(Notice::info(
             "only one demonstration: S needs two or more and is 0 here",
@@ -74,5 +75,30 @@ pub fn build_model<'a>(
         model,
         used,
         notices,
+    })
+}
+
+/// The span under which a Savitzky-Golay window of samples smooths too
+/// little (a robot arm logged at 500 Hz and more), seconds.
+pub const SHORT_WINDOW_S: f64 = 0.03;
+
+/// A warning when the window in samples spans less than
+/// [`SHORT_WINDOW_S`] of a demo's resampled time.
+fn short_window(p: &PreparedDemo, prep: &PrepSettings) -> Option<Notice> {
+    if prep.sg_seconds.is_some() || p.n0 < 2 {
+        return None;
+    }
+    let spacing = p.duration_s / (p.n0 - 1) as f64;
+    let span = (prep.sg_window - 1) as f64 * spacing;
+    (span < SHORT_WINDOW_S).then(|| {
+        Notice::warning(format!(
+            "{}: the {}-sample Savitzky-Golay window spans {:.0} ms at its {:.0} Hz: its \
+             velocities and accelerations (and S) are mostly noise; --sg-seconds 0.2 (the \
+             app's Settings: window in seconds) sets the window as a duration",
+            p.name,
+            prep.sg_window,
+            span * 1e3,
+            1.0 / spacing
+        ))
     })
 }

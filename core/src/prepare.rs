@@ -15,7 +15,7 @@ pub const MAX_RESAMPLED: usize = 1_000_000;
 
 /// Settings of the preprocessing (method.md section 2; the paper's values
 /// are the defaults).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PrepSettings {
     /// Savitzky-Golay window in samples (odd).
     pub sg_window: usize,
@@ -23,6 +23,30 @@ pub struct PrepSettings {
     pub sg_order: usize,
     /// Points of the unit-time integration grid.
     pub grid_points: usize,
+    /// An option beyond the method: the window as a duration, seconds,
+    /// turned into an odd number of samples at each demo's own resampled
+    /// rate (at least `sg_order + 2`); `None` uses `sg_window` samples.
+    #[serde(default)]
+    pub sg_seconds: Option<f64>,
+}
+
+impl PrepSettings {
+    /// The window in samples for a demo resampled at `spacing` seconds.
+    pub fn window_at(&self, spacing: f64) -> usize {
+        match self.sg_seconds {
+            None => self.sg_window,
+            Some(secs) => {
+                let least = self.sg_order + 2;
+                let w = (secs / spacing).round();
+                let w = if w.is_finite() && w > 0.0 {
+                    (w as usize).clamp(least, MAX_RESAMPLED)
+                } else {
+                    least
+                };
+                w | 1
+            }
+        }
+    }
 }
 
 impl Default for PrepSettings {
@@ -31,6 +55,7 @@ impl Default for PrepSettings {
             sg_window: 21,
             sg_order: 3,
             grid_points: crate::DEFAULT_GRID_POINTS,
+            sg_seconds: None,
         }
     }
 }
@@ -164,6 +189,18 @@ pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
         });
     }
     let n0 = ratio.round_ties_even() as usize + 1;
+    // A window given as a duration is known in samples only now.
+    let (sg, min) = match settings.sg_seconds {
+        None => (sg, min),
+        Some(_) => {
+            let sg = SavGol::new(
+                settings.window_at(total / (n0.max(2) - 1) as f64),
+                settings.sg_order,
+            )?;
+            let min = sg.window();
+            (sg, min)
+        }
+    };
     if n0 < min {
         return Err(Error::TooFewSamples {
             demo: raw.name.clone(),

@@ -20,7 +20,9 @@
 //!                                 "on_edge_fraction"}},
 //!   "diagnostics_about": {"grid", "resamples", "notes"},            (with diagnostics)
 //!   "constrained": {"a_peak_limit", "optimum": null | {"dm", "km",   (with an a_peak limit)
-//!                   "j", "a_peak", "on_edge"}}
+//!                   "j", "a_peak", "on_edge"}},
+//!   "loading": {"units", "up", "demos", "segments", "trim_rest",    (extract)
+//!               "sg_window", "sg_order", "sg_seconds"}
 //! }
 //! ```
 //!
@@ -173,6 +175,53 @@ pub struct Report {
     /// The optimum under an a_peak limit, when one was asked for.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub constrained: Option<Constrained>,
+    /// How the recordings were read and prepared, when the caller says.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub loading: Option<LoadingChoices>,
+}
+
+/// The loading and preparation choices behind a report (so a reader knows
+/// the units, what was trimmed and how demos were cut).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LoadingChoices {
+    /// The positions' unit in the files (converted to metres).
+    pub units: crate::units::Units,
+    /// The recordings' up axis.
+    pub up: crate::io::UpAxis,
+    /// What a demonstration is: `topic`, `file` or `segment`.
+    pub demos: String,
+    /// With segments: which were kept (`all`, `first`, `last`, `N`).
+    pub segments: String,
+    /// Whether rests at the ends were cut.
+    pub trim_rest: bool,
+    /// The Savitzky-Golay window in samples (when not a duration).
+    pub sg_window: usize,
+    /// Its polynomial order.
+    pub sg_order: usize,
+    /// The window as a duration, seconds, when asked for.
+    pub sg_seconds: Option<f64>,
+}
+
+impl LoadingChoices {
+    /// The choices of loading options and preparation settings.
+    pub fn of(load: &crate::io::LoadOptions, prep: &crate::PrepSettings) -> Self {
+        use crate::group::Grouping;
+        let (demos, segments) = match load.demos {
+            Grouping::PerTopic => ("topic", "all".to_owned()),
+            Grouping::PerFile => ("file", "all".to_owned()),
+            Grouping::Segmented(s) => ("segment", s.keep.name()),
+        };
+        Self {
+            units: load.units,
+            up: load.up,
+            demos: demos.to_owned(),
+            segments,
+            trim_rest: load.trim_rest,
+            sg_window: prep.sg_window,
+            sg_order: prep.sg_order,
+            sg_seconds: prep.sg_seconds,
+        }
+    }
 }
 
 /// The least J among the gains whose largest a_peak (any demo) stays within
@@ -307,6 +356,7 @@ impl Report {
             diagnostics: None,
             diagnostics_about: None,
             constrained: None,
+            loading: None,
         }
     }
 

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use dmpscope_core::Report;
 use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
-use dmpscope_core::report::Constrained;
+use dmpscope_core::report::{Constrained, LoadingChoices};
 
 use super::inputs::InputArgs;
 use super::landscape::{GridArgs, landscape_and_optimum};
@@ -47,6 +47,10 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (_, model, land, optimum) = landscape_and_optimum(&args.input, &args.grid)?;
     let mut report = Report::new(&model, Some(&optimum), args.grid.k);
+    report.loading = Some(LoadingChoices::of(
+        &args.input.load.options(),
+        &args.input.prep(),
+    ));
     if !args.no_diagnostics {
         let settings = DiagSettings {
             grid_points: args.diag_grid,

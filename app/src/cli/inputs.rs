@@ -12,7 +12,8 @@ use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::gaps::GapPolicy;
 use dmpscope_core::group::Grouping;
 use dmpscope_core::io::{LoadOptions, SourceData, UpAxis, load_source, load_streams};
-use dmpscope_core::segment::SegmentSettings;
+use dmpscope_core::segment::{SegmentPick, SegmentSettings};
+use dmpscope_core::units::Units;
 use dmpscope_core::{Model, PrepSettings, RawDemo, Unusable, build_model};
 
 use super::output::print_notices;
@@ -103,6 +104,31 @@ pub struct LoadArgs {
     /// (bridged); a warning names it either way.
     #[arg(long, value_enum, default_value_t = GapsArg::Split)]
     pub gaps: GapsArg,
+    /// The length unit of the recordings' positions (motion-capture exports
+    /// are often in millimetres); converted to metres at loading.
+    #[arg(long, value_enum, default_value_t = UnitsArg::M)]
+    pub units: UnitsArg,
+    /// Cut each demo's rests at its start and end (speed below
+    /// --rest-speed for longer than --min-rest) before preparation; they
+    /// are reported either way. Changes what unit time spans.
+    #[arg(long)]
+    pub trim_rest: bool,
+    /// With --demos segment: which movements of each recording are demos
+    /// (all, first, last, or a number from 1), e.g. `first` keeps the reach
+    /// of each reach-and-return trial.
+    #[arg(long, default_value = "all", value_parser = SegmentPick::parse, value_name = "WHICH")]
+    pub segments: SegmentPick,
+}
+
+/// Length units on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum UnitsArg {
+    /// Metres.
+    M,
+    /// Centimetres.
+    Cm,
+    /// Millimetres.
+    Mm,
 }
 
 impl LoadArgs {
@@ -112,6 +138,7 @@ impl LoadArgs {
             rest_speed: self.rest_speed,
             min_rest_s: self.min_rest,
             min_segment_s: self.min_demo,
+            keep: self.segments,
             ..SegmentSettings::default()
         }
     }
@@ -135,6 +162,16 @@ impl LoadArgs {
                 topics: self.topics.clone(),
                 exclude: self.exclude.clone(),
                 min_extent_m: self.min_extent,
+            },
+            units: match self.units {
+                UnitsArg::M => Units::M,
+                UnitsArg::Cm => Units::Cm,
+                UnitsArg::Mm => Units::Mm,
+            },
+            trim_rest: self.trim_rest,
+            rest: SegmentSettings {
+                keep: SegmentPick::All,
+                ..self.segment_settings()
             },
         }
     }
@@ -201,6 +238,11 @@ pub struct InputArgs {
     /// is left), or stop at the first.
     #[arg(long, value_enum, default_value_t = UnusableArg::Skip)]
     pub unusable: UnusableArg,
+    /// An option beyond the method: the Savitzky-Golay window as a
+    /// duration in seconds, an odd number of samples at each demo's own
+    /// rate (at least --sg-order + 2); overrides --sg-window.
+    #[arg(long, value_name = "S")]
+    pub sg_seconds: Option<f64>,
 }
 
 impl InputArgs {
@@ -209,6 +251,7 @@ impl InputArgs {
         PrepSettings {
             sg_window: self.sg_window,
             sg_order: self.sg_order,
+            sg_seconds: self.sg_seconds,
             ..PrepSettings::default()
         }
     }

@@ -59,7 +59,7 @@ pub const FORMATS: [Format; 4] = [
         name: "CSV",
         suffixes: &[".csv"],
         reader: Reader::Csv,
-        walk: &[],
+        walk: &[".csv"],
         magic: &[],
     },
     Format {
@@ -151,12 +151,12 @@ mod tests {
     }
 
     #[test]
-    fn folders_walk_mcap_files_plain_or_compressed_and_bags() {
+    fn folders_walk_mcap_files_plain_or_compressed_bags_and_csv() {
         assert!(walked(Path::new("/x/run_0.mcap")));
         assert!(walked(Path::new("/x/run_0.MCAP.zstd")));
         assert!(walked(Path::new("/x/run_0.mcap.zst")));
         assert!(!walked(Path::new("/x/notes.zst")));
-        assert!(!walked(Path::new("/x/t.csv")));
+        assert!(walked(Path::new("/x/trial_04.CSV")));
         assert!(walked(Path::new("/x/demo_3.bag")));
         assert!(!walked(Path::new("/x/metadata.yaml")));
     }

@@ -76,6 +76,14 @@ pub struct LoadOptions {
     /// `/tf_static` as a TF buffer does; `None` keeps each transform
     /// relative to its own parent.
     pub fixed_frame: Option<String>,
+    /// The length unit of the positions (applied by
+    /// [`super::load_streams`]).
+    pub units: crate::units::Units,
+    /// Cut each demo's rests at its ends (applied by
+    /// [`super::load_source`]; measured and reported either way).
+    pub trim_rest: bool,
+    /// What a rest is, for the end rests (the segmentation's settings).
+    pub rest: crate::segment::SegmentSettings,
 }
 
 /// What one file gave.

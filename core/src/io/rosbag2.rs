@@ -108,7 +108,7 @@ pub fn classify(folder: &Path) -> Result<Folder> {
             "holds a rosbag2 recording in SQLite (.db3), which dmpscope does not read: \
              convert it with `ros2 bag convert` to MCAP storage"
         } else {
-            "folder holds no .mcap file (nor .mcap.zstd, nor ROS 1 .bag)"
+            "folder holds no .mcap file (nor .mcap.zstd, ROS 1 .bag or .csv)"
         };
         return Err(Error::Source {
             path: folder.display().to_string(),

@@ -46,12 +46,24 @@ pub struct SourceDemos {
 }
 
 /// Loads the streams of a source (one per topic and key), with the frame
-/// filter and up axis of `options` applied but not its grouping.
+/// filter, up axis and units of `options` applied but not its grouping. A
+/// stream whose size suggests other units gets a warning.
 pub fn load_streams(
     name: &str,
     data: SourceData<'_>,
     options: &LoadOptions,
 ) -> Result<SourceDemos> {
+    let mut loaded = read_streams(name, data, options)?;
+    for demo in &mut loaded.demos {
+        options.units.apply(demo);
+        if let Some(warning) = crate::units::suspect(demo, options.units) {
+            loaded.notices.push(warning);
+        }
+    }
+    Ok(loaded)
+}
+
+fn read_streams(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Result<SourceDemos> {
     match data {
         SourceData::Bytes(bytes) => match formats::detect(name, bytes).reader {
             Reader::Csv => {
@@ -79,19 +91,7 @@ pub fn load_streams(
             if path.is_dir() {
                 return load_folder(path, options);
             }
-            let by_name = formats::by_name(name)
-                .or_else(|| formats::by_name(&path.to_string_lossy()))
-                .map(|f| f.reader);
-            match by_name {
-                Some(Reader::Csv) => {
-                    let text = std::fs::read_to_string(path).map_err(|reason| Error::Io {
-                        file: name.to_owned(),
-                        reason,
-                    })?;
-                    csv_demo(name, &text, options)
-                }
-                _ => Ok(from_mcap(name, read_file(path, name, options)?)),
-            }
+            read_file(path, name, options)
         }
     }
 }
@@ -113,6 +113,8 @@ pub fn load_source(name: &str, data: SourceData<'_>, options: &LoadOptions) -> R
     loaded.notices.extend(arranged.notices);
     loaded.demos = arranged.demos;
     loaded.streams = arranged.streams;
+    let rests = crate::rest::apply(&mut loaded.demos, &options.rest, options.trim_rest);
+    loaded.notices.extend(rests);
     Ok(loaded)
 }
 
@@ -129,7 +131,7 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
             let mut out = SourceDemos::default();
             for file in files {
                 let label = file.display().to_string();
-                let loaded = from_mcap(&label, read_file(&file, &label, options)?);
+                let loaded = read_file(&file, &label, options)?;
                 out.demos.extend(loaded.demos);
                 out.notices.extend(loaded.notices);
                 out.skipped.extend(loaded.skipped);
@@ -163,10 +165,11 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
     }
 }
 
-/// Reads one recording file: a ROS 1 bag (by its name or its first bytes)
-/// from its bytes, else MCAP, plain or compressed (rosbag2's reader tells
-/// them apart), which also says what a file of no known format is not.
-fn read_file(path: &Path, label: &str, options: &LoadOptions) -> Result<Loaded> {
+/// Reads one recording file: CSV text, a ROS 1 bag (by its name or its
+/// first bytes) from its bytes, else MCAP, plain or compressed (rosbag2's
+/// reader tells them apart), which also says what a file of no known format
+/// is not.
+fn read_file(path: &Path, label: &str, options: &LoadOptions) -> Result<SourceDemos> {
     let io = |reason| Error::Io {
         file: label.to_owned(),
         reason,
@@ -178,11 +181,17 @@ fn read_file(path: &Path, label: &str, options: &LoadOptions) -> Result<Loaded> 
     let format = formats::by_name(label)
         .or_else(|| formats::by_name(&path.to_string_lossy()))
         .or_else(|| formats::by_magic(&head[..n]));
-    if format.is_some_and(|f| f.reader == Reader::Bag) {
-        let bytes = std::fs::read(path).map_err(io)?;
-        return load_bag_bytes(label, &bytes, options);
+    match format.map(|f| f.reader) {
+        Some(Reader::Csv) => {
+            let text = std::fs::read_to_string(path).map_err(io)?;
+            csv_demo(label, &text, options)
+        }
+        Some(Reader::Bag) => {
+            let bytes = std::fs::read(path).map_err(io)?;
+            Ok(from_mcap(label, load_bag_bytes(label, &bytes, options)?))
+        }
+        _ => Ok(from_mcap(label, rosbag2::read_file(path, label, options)?)),
     }
-    rosbag2::read_file(path, label, options)
 }
 
 /// A path naming a rosbag2 folder's `metadata.yaml` stands for the folder.
