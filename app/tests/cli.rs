@@ -136,10 +136,14 @@ fn extract_json_is_the_same_report_as_landscape_json() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report: Value = serde_json::from_slice(&out.stdout).expect("json");
     let keys = sorted_keys(&report);
-    assert_eq!(keys, ["demos", "k", "optimum", "table"]);
-    for key in keys {
+    assert_eq!(keys, ["demos", "k", "loading", "optimum", "table"]);
+    for key in keys.into_iter().filter(|k| *k != "loading") {
         assert_eq!(report[key], doc[key], "{key}");
     }
+    // The loading choices: the defaults, the method as written.
+    assert_eq!(report["loading"]["units"], "m");
+    assert_eq!(report["loading"]["trim_rest"], false);
+    assert_eq!(report["loading"]["sg_window"], 21);
 }
 
 #[test]

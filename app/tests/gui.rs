@@ -170,7 +170,7 @@ fn a_rosbag2_folder_opens_as_in_the_cli() {
         ]
     );
     assert_eq!(session.status(), Status::Ready);
-    let _listed = h.get_by_label_contains("gui-bag:/hand_04");
+    assert!(h.get_all_by_label_contains("gui-bag:/hand_04").count() >= 1);
     // Its metadata.yaml opens the same folder (what a file dialog picks).
     add(&mut h, vec![Source::Path(bag.join("metadata.yaml"))]);
     assert_eq!(h.state().session().demos().len(), 8);

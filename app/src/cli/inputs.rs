@@ -61,8 +61,9 @@ pub enum UnusableArg {
 /// Files and how to read them.
 #[derive(Debug, clap::Args)]
 pub struct LoadArgs {
-    /// MCAP or CSV (`t,x,y,z`) files, or folders (a rosbag2 folder, or any
-    /// folder: every `*.mcap` in it, sorted by name).
+    /// MCAP (`.mcap`, `.mcap.zstd`), ROS 1 bag (`.bag`) or CSV (`t,x,y,z`
+    /// or `t,x,y,z,qx,qy,qz,qw`) files, or folders (a rosbag2 folder, or any
+    /// folder: every recording in it, sorted by name, and its sub-folders).
     #[arg(required = true, value_name = "FILES")]
     pub files: Vec<PathBuf>,
     /// Keep only these TF child frames / pose indices (repeatable).

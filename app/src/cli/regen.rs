@@ -168,6 +168,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     frame_id,
                     band: r.skill.as_ref().map(|_| r.out.band.clone()),
                     scaling,
+                    recorded_units: args.input.load.options().units,
                 },
             )
             .with_context(|| format!("{}: not written", out.display()))?;

@@ -193,6 +193,7 @@ impl DmpApp {
                     .clone()
                     .unwrap_or_else(|| "world".to_owned()),
                 band: skill.then(|| g.out.band.clone()),
+                recorded_units: self.settings.load.units,
                 scaling,
             },
         )

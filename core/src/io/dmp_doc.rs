@@ -106,6 +106,9 @@ pub struct Units {
     pub velocity: &'static str,
     /// Real-time acceleration.
     pub acceleration: &'static str,
+    /// The unit of the recordings the DMP was learned from (`m`, `cm`,
+    /// `mm`); every position here is in metres either way.
+    pub recorded: &'static str,
 }
 
 /// The golden rollout: real time from 0 to tau.
@@ -208,6 +211,8 @@ pub struct DocContext<'a> {
     pub band: Option<Vec<crate::geom::Vec3>>,
     /// The scaling mode used.
     pub scaling: Scaling,
+    /// The unit the recordings were in (converted to metres at loading).
+    pub recorded_units: crate::units::Units,
 }
 
 /// The export of `primitive` run at `out`. Fails, naming the field,
@@ -283,6 +288,7 @@ pub fn dmp_document(
             time: "s",
             velocity: "m/s",
             acceleration: "m/s^2",
+            recorded: ctx.recorded_units.name(),
         },
         rollout: RolloutDoc {
             t: out.t.clone(),

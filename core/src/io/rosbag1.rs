@@ -336,7 +336,9 @@ fn open_chunk(record: &Record<'_>) -> std::result::Result<Vec<u8>, String> {
         ));
     }
     let data = record.data;
-    let mut out = Vec::with_capacity(size);
+    // Reserve what the compressed bytes can plausibly give, not what a
+    // header claims.
+    let mut out = Vec::with_capacity(size.min(data.len().saturating_mul(16)));
     let read = match compression.as_str() {
         "none" => return Ok(data.to_vec()),
         "bz2" => bzip2::read::BzDecoder::new(data)

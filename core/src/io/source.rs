@@ -113,8 +113,6 @@ pub fn load_source(name: &str, data: SourceData<'_>, options: &LoadOptions) -> R
     loaded.notices.extend(arranged.notices);
     loaded.demos = arranged.demos;
     loaded.streams = arranged.streams;
-    let rests = crate::rest::apply(&mut loaded.demos, &options.rest, options.trim_rest);
-    loaded.notices.extend(rests);
     Ok(loaded)
 }
 

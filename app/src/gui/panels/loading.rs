@@ -1,13 +1,15 @@
-//! How recordings are read, as on the command line (`--y-up`, `--frame`,
-//! `--fixed-frame`, `--topic`, `--exclude`, `--min-extent`, `--demos`,
-//! `--rest-speed`, `--min-rest`, `--min-demo`, `--gaps`): changing the up
-//! axis, the frame filter or the fixed frame reads the recordings again;
-//! the rest only rearranges what was read.
+//! How recordings are read, as on the command line (`--y-up`, `--units`,
+//! `--frame`, `--fixed-frame`, `--topic`, `--exclude`, `--min-extent`,
+//! `--demos`, `--segments`, `--rest-speed`, `--min-rest`, `--min-demo`,
+//! `--gaps`, `--trim-rest`): changing the up axis, the units, the frame
+//! filter or the fixed frame reads the recordings again; the rest only
+//! rearranges what was read.
 
 use dmpscope_core::gaps::GapPolicy;
 use dmpscope_core::group::Grouping;
 use dmpscope_core::io::UpAxis;
-use dmpscope_core::segment::SegmentSettings;
+use dmpscope_core::segment::{SegmentPick, SegmentSettings};
+use dmpscope_core::units::Units;
 use eframe::egui;
 
 use super::PanelCtx;
@@ -17,6 +19,7 @@ pub fn loading_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let (load, view) = (&mut cx.settings.load, &mut *cx.view);
     egui::Grid::new("loading").show(ui, |ui| {
         loading_up_axis_ui(ui, &mut load.up);
+        loading_units_ui(ui, &mut load.units);
         list_field(
             ui,
             "frames",
@@ -48,9 +51,72 @@ pub fn loading_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         loading_gaps_ui(ui, &mut load.gaps);
         if let Grouping::Segmented(seg) = &mut load.demos {
             loading_segment_ui(ui, seg);
+            loading_segment_pick_ui(ui, &mut seg.keep);
             view.segment = *seg;
         }
+        loading_rests_ui(ui, load);
+        // A rest is the segmentation's, whatever a demo is (as the CLI's
+        // --rest-speed and --min-rest).
+        load.rest = SegmentSettings {
+            keep: SegmentPick::All,
+            ..view.segment
+        };
     });
+}
+
+/// The units row.
+fn loading_units_ui(ui: &mut egui::Ui, units: &mut Units) {
+    ui.label("units");
+    ui.horizontal(|ui| {
+        for u in Units::ALL {
+            ui.radio_value(units, u, u.name())
+                .on_hover_text("the unit of the files' positions, converted to metres");
+        }
+    });
+    ui.end_row();
+}
+
+/// Which segments of each recording are demos.
+fn loading_segment_pick_ui(ui: &mut egui::Ui, keep: &mut SegmentPick) {
+    ui.label("keep segments");
+    ui.horizontal(|ui| {
+        for (pick, name) in [
+            (SegmentPick::All, "all"),
+            (SegmentPick::First, "first"),
+            (SegmentPick::Last, "last"),
+        ] {
+            ui.radio_value(keep, pick, name);
+        }
+        let mut n = match *keep {
+            SegmentPick::Nth(n) => n,
+            _ => 2,
+        };
+        let nth = matches!(keep, SegmentPick::Nth(_));
+        if ui.radio(nth, "number").clicked() {
+            *keep = SegmentPick::Nth(n);
+        }
+        if nth
+            && ui
+                .add(egui::DragValue::new(&mut n).range(1..=100))
+                .changed()
+        {
+            *keep = SegmentPick::Nth(n);
+        }
+    })
+    .response
+    .on_hover_text("e.g. first: the reach of each reach-and-return trial");
+    ui.end_row();
+}
+
+/// The rests-at-the-ends row: trim them or keep them (reported either way;
+/// a rest is the segmentation's, below its rest speed for its rest time).
+fn loading_rests_ui(ui: &mut egui::Ui, load: &mut dmpscope_core::io::LoadOptions) {
+    ui.label("rests at the ends");
+    ui.checkbox(&mut load.trim_rest, "trim").on_hover_text(
+        "cut each demo's standing still before and after the motion (changes what unit \
+             time spans); the Recording panel's notes say how much either way",
+    );
+    ui.end_row();
 }
 
 /// The up axis row.

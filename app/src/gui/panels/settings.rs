@@ -7,6 +7,35 @@ use eframe::egui;
 use super::PanelCtx;
 use crate::session::Settings;
 
+/// The window-as-a-duration row (`--sg-seconds`), which overrides the
+/// window in samples.
+fn sg_seconds_ui(ui: &mut egui::Ui, sg_seconds: &mut Option<f64>) {
+    let l = ui.label("SG window in seconds");
+    ui.horizontal(|ui| {
+        let mut on = sg_seconds.is_some();
+        if ui
+            .checkbox(&mut on, "")
+            .labelled_by(l.id)
+            .on_hover_text(
+                "beyond the method: the window as a duration, an odd number of samples at \
+                 each demo's own rate (for recordings at hundreds of Hz)",
+            )
+            .changed()
+        {
+            *sg_seconds = on.then_some(0.2);
+        }
+        if let Some(secs) = sg_seconds {
+            ui.add(
+                egui::DragValue::new(secs)
+                    .range(0.005..=5.0)
+                    .speed(0.005)
+                    .suffix(" s"),
+            );
+        }
+    });
+    ui.end_row();
+}
+
 /// The Settings section.
 pub fn settings_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let s = &mut *cx.settings;
@@ -57,6 +86,7 @@ pub fn settings_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
                 .labelled_by(l.id);
         });
         ui.end_row();
+        sg_seconds_ui(ui, &mut s.prep.sg_seconds);
         let l = ui.label("basis functions");
         ui.add(egui::DragValue::new(&mut s.dmp.basis_functions).range(2..=500))
             .labelled_by(l.id);

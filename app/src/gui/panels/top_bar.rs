@@ -73,7 +73,7 @@ pub fn top_bar_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             }
             _ => {}
         }
-        ui.weak("or drop .mcap / .csv files on the window");
+        ui.weak("or drop .mcap / .bag / .csv files on the window");
     });
 }
 
