@@ -133,7 +133,7 @@ pub struct Arrangement {
     /// Cut each demo's rests at its ends (reported either way).
     pub trim_rest: bool,
     /// What a rest is.
-    pub rest: crate::segment::SegmentSettings,
+    pub rest: SegmentSettings,
 }
 
 impl Arrangement {
@@ -416,7 +416,7 @@ mod tests {
             gaps: GapPolicy::Split,
             demos,
             trim_rest: false,
-            rest: crate::segment::SegmentSettings::default(),
+            rest: SegmentSettings::default(),
         }
     }
 
