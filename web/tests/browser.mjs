@@ -338,6 +338,26 @@ try {
     `without worker.js the page computes (${alone.landscape_points_here} points), says so ("${told[told.length - 1]}") and gives the same optimum (${aloneWorst.toExponential(2)})`);
   await page.unroute("**/worker.js");
 
+  // ROS 1 bags dropped on the page: one named .bag (lz4 chunks), one
+  // without a name that says what it is (bz2 chunks, known by its first
+  // bytes); each gives its pose topics and names the custom type it skips.
+  const bags = join(here, "..", "..", "core", "tests", "bags", "reach");
+  for (const [file, name, total] of [["reach_3.bag", "vive.bag", 12], ["reach_2.bag", "upload", 14]]) {
+    const b64 = (await readFile(join(bags, file))).toString("base64");
+    await page.evaluate(([b64, name]) => {
+      const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+      const dt = new DataTransfer();
+      dt.items.add(new File([bytes], name));
+      const target = document.getElementById("dmpscope_canvas");
+      for (const type of ["dragenter", "dragover", "drop"]) {
+        target.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true }));
+      }
+    }, [b64, name]);
+    const got = await until(`the dropped bag ${name}'s demos`, (s) => s.demos.length === total && !s.loading, 20000);
+    check(got.demos.includes(`${name}:/vive/controller`) && got.messages.some((m) => m.includes("my_msgs/Button")),
+      `a ROS 1 bag dropped on the page (${file} as ${name}) is read`);
+  }
+
   const wasm = await readFile(join(dist, "dmpscope_bg.wasm"));
   figures.wasm_mb = wasm.length / 1e6;
   figures.wasm_gzip_mb = gzipSync(wasm, { level: 9 }).length / 1e6;
