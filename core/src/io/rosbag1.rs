@@ -11,6 +11,7 @@
 //! becomes a channel of the shared [`Collector`], whose ROS 1 decoders, TF
 //! buffer and stream finishing are the MCAP reader's.
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::io::Read;
 
@@ -326,8 +327,9 @@ fn connection(c: &mut Collector<'_>, walk: &mut Walk, record: &Record<'_>) -> Re
     })
 }
 
-/// A chunk's records, decompressed (at most the size its header states).
-fn open_chunk(record: &Record<'_>) -> std::result::Result<Vec<u8>, String> {
+/// A chunk's records, decompressed (at most the size its header states);
+/// an uncompressed chunk's are its own bytes.
+fn open_chunk<'a>(record: &Record<'a>) -> std::result::Result<Cow<'a, [u8]>, String> {
     let compression = record.text("compression")?;
     let size = record.u32("size")? as usize;
     if size > RECORD_LENGTH_LIMIT {
@@ -340,7 +342,7 @@ fn open_chunk(record: &Record<'_>) -> std::result::Result<Vec<u8>, String> {
     // header claims.
     let mut out = Vec::with_capacity(size.min(data.len().saturating_mul(16)));
     let read = match compression.as_str() {
-        "none" => return Ok(data.to_vec()),
+        "none" => return Ok(Cow::Borrowed(data)),
         "bz2" => bzip2::read::BzDecoder::new(data)
             .take(size as u64 + 1)
             .read_to_end(&mut out),
@@ -360,5 +362,5 @@ fn open_chunk(record: &Record<'_>) -> std::result::Result<Vec<u8>, String> {
             out.len()
         ));
     }
-    Ok(out)
+    Ok(Cow::Owned(out))
 }
