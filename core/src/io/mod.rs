@@ -57,6 +57,23 @@ pub struct PoseSample<'a> {
     pub orientation: Option<[f64; 4]>,
 }
 
+impl PoseSample<'_> {
+    /// A single pose (no key, no parent): what most pose messages give.
+    pub fn single(
+        stamp_ns: Option<i64>,
+        position: [f64; 3],
+        orientation: Option<[f64; 4]>,
+    ) -> PoseSample<'static> {
+        PoseSample {
+            key: None,
+            stamp_ns,
+            position,
+            parent: None,
+            orientation,
+        }
+    }
+}
+
 /// Decodes the messages of one channel.
 pub trait MessageDecoder: Send {
     /// Decodes one message, handing every pose in it to `out`; an `Err` is

@@ -221,13 +221,7 @@ pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String
     let mut r = Reader::new(message);
     let stamp_ns = r.header()?;
     let (position, orientation) = r.pose()?;
-    Ok(PoseSample {
-        key: None,
-        stamp_ns,
-        position,
-        orientation: Some(orientation),
-        ..PoseSample::default()
-    })
+    Ok(PoseSample::single(stamp_ns, position, Some(orientation)))
 }
 
 /// Decodes ROS 1 `geometry_msgs/PoseWithCovarianceStamped`: header, the
@@ -237,13 +231,7 @@ pub fn decode_pose_with_covariance_stamped(message: &[u8]) -> Result<PoseSample<
     let stamp_ns = r.header()?;
     let (position, orientation) = r.pose()?;
     r.skip_f64s(36, "pose.covariance")?;
-    Ok(PoseSample {
-        key: None,
-        stamp_ns,
-        position,
-        orientation: Some(orientation),
-        ..PoseSample::default()
-    })
+    Ok(PoseSample::single(stamp_ns, position, Some(orientation)))
 }
 
 /// Decodes ROS 1 `geometry_msgs/PointStamped`: header, then the point (no
@@ -252,12 +240,7 @@ pub fn decode_point_stamped(message: &[u8]) -> Result<PoseSample<'static>, Strin
     let mut r = Reader::new(message);
     let stamp_ns = r.header()?;
     let position = r.vec3(["point.x", "point.y", "point.z"])?;
-    Ok(PoseSample {
-        key: None,
-        stamp_ns,
-        position,
-        ..PoseSample::default()
-    })
+    Ok(PoseSample::single(stamp_ns, position, None))
 }
 
 /// Decodes ROS 1 `nav_msgs/Odometry`: header, child frame id, the pose
@@ -269,13 +252,7 @@ pub fn decode_odometry(message: &[u8]) -> Result<PoseSample<'static>, String> {
     let (position, orientation) = r.pose()?;
     r.skip_f64s(36, "pose.covariance")?;
     r.skip_f64s(6 + 36, "twist")?;
-    Ok(PoseSample {
-        key: None,
-        stamp_ns,
-        position,
-        orientation: Some(orientation),
-        ..PoseSample::default()
-    })
+    Ok(PoseSample::single(stamp_ns, position, Some(orientation)))
 }
 
 /// The decoder of ROS 1 `geometry_msgs/TransformStamped` (one pose, keyed

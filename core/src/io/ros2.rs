@@ -240,13 +240,7 @@ pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String
     let mut r = CdrReader::new(message)?;
     let stamp_ns = header(&mut r)?;
     let (position, orientation) = pose(&mut r)?;
-    Ok(PoseSample {
-        key: None,
-        stamp_ns,
-        position,
-        orientation: Some(orientation),
-        ..PoseSample::default()
-    })
+    Ok(PoseSample::single(stamp_ns, position, Some(orientation)))
 }
 
 /// Decodes `geometry_msgs/msg/PoseWithCovarianceStamped`: header, the pose,
@@ -258,13 +252,7 @@ pub fn decode_pose_with_covariance_stamped(message: &[u8]) -> Result<PoseSample<
     for _ in 0..36 {
         r.f64("pose.covariance")?;
     }
-    Ok(PoseSample {
-        key: None,
-        stamp_ns,
-        position,
-        orientation: Some(orientation),
-        ..PoseSample::default()
-    })
+    Ok(PoseSample::single(stamp_ns, position, Some(orientation)))
 }
 
 /// Decodes `geometry_msgs/msg/PointStamped`: header, then the point.
@@ -272,12 +260,7 @@ pub fn decode_point_stamped(message: &[u8]) -> Result<PoseSample<'static>, Strin
     let mut r = CdrReader::new(message)?;
     let stamp_ns = header(&mut r)?;
     let position = vec3(&mut r, ["point.x", "point.y", "point.z"])?;
-    Ok(PoseSample {
-        key: None,
-        stamp_ns,
-        position,
-        ..PoseSample::default()
-    })
+    Ok(PoseSample::single(stamp_ns, position, None))
 }
 
 /// Decodes `geometry_msgs/msg/TransformStamped`: header, child frame id (the
