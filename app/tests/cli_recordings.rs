@@ -63,12 +63,18 @@ fn run(args: &[&str]) -> (String, String) {
 #[test]
 fn millimetre_trials_give_their_reaches_in_metres() {
     let dir = folder("mm-trials", 5, reach_and_return_mm);
+    // A table beside the trials is not a demo: skipped, said.
+    std::fs::write(dir.join("gains.csv"), "gains,dm,km\nExtracted,1,2\n").expect("write");
     let dir = dir.to_str().expect("path");
     let seg = ["--demos", "segment", "--segments", "first"];
     // Without --units: a warning naming file and topic and the flag.
     let (_, err) = run(&[&["info", dir][..], &seg].concat());
     assert!(
         err.contains("trial_00.csv: csv:") && err.contains("--units mm"),
+        "{err}"
+    );
+    assert!(
+        err.contains("gains.csv") && err.contains("skipped (not a t,x,y,z"),
         "{err}"
     );
     let (out, err) = run(&[&["info", "--json", "--units", "mm", dir][..], &seg].concat());
@@ -197,4 +203,17 @@ fn a_short_smoothing_window_is_flagged_and_a_window_in_seconds_fixes_it() {
     assert!(!err.contains("Savitzky-Golay window spans"), "{err}");
     let report: Value = serde_json::from_str(&out).expect("json");
     assert_eq!(report["loading"]["sg_seconds"], 0.1);
+    // The wider window smooths: S at the paper's gains changes.
+    let (plain, _) = run(&["extract", "--json", "--grid", "8", "--no-diagnostics", dir]);
+    let plain: Value = serde_json::from_str(&plain).expect("json");
+    let s = |r: &Value| r["table"][1]["s"].as_f64().expect("S");
+    assert!(
+        (s(&report) - s(&plain)).abs() > 1e-6 * s(&plain),
+        "{} {}",
+        s(&report),
+        s(&plain)
+    );
+    // A window of no duration is refused.
+    let out = dmpscope(&["extract", "--sg-seconds", "0", dir]);
+    assert!(!out.status.success() && text(&out.stderr).contains("above 0"));
 }

@@ -134,6 +134,9 @@ pub struct Arrangement {
     pub trim_rest: bool,
     /// What a rest is.
     pub rest: SegmentSettings,
+    /// The unit the positions were read in (for the warning when their
+    /// size suggests another).
+    pub units: crate::units::Units,
 }
 
 impl Arrangement {
@@ -145,6 +148,7 @@ impl Arrangement {
             demos: options.demos,
             trim_rest: options.trim_rest,
             rest: options.rest,
+            units: options.units,
         }
     }
 }
@@ -255,6 +259,13 @@ pub fn arrange(
     }
     let rests = crate::rest::apply(&mut out.demos, &how.rest, how.trim_rest);
     out.notices.extend(rests);
+    // Only demos: a map frame or an odometry stream far from the origin
+    // that was skipped says nothing about the units.
+    let odd_size = out
+        .demos
+        .iter()
+        .filter_map(|d| crate::units::suspect(d, how.units));
+    out.notices.extend(odd_size.collect::<Vec<_>>());
     Ok(out)
 }
 
@@ -417,6 +428,7 @@ mod tests {
             demos,
             trim_rest: false,
             rest: SegmentSettings::default(),
+            units: crate::units::Units::M,
         }
     }
 

@@ -13,6 +13,10 @@ use crate::savgol::SavGol;
 /// stamps with gaps far longer than their interval, not a demonstration.
 pub const MAX_RESAMPLED: usize = 1_000_000;
 
+/// The widest window `sg_seconds` gives, samples (its kernels grow with the
+/// square of the width: 501 samples are 0.5 s at 1 kHz).
+pub const MAX_SG_WINDOW: usize = 501;
+
 /// Settings of the preprocessing (method.md section 2; the paper's values
 /// are the defaults).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -25,7 +29,8 @@ pub struct PrepSettings {
     pub grid_points: usize,
     /// An option beyond the method: the window as a duration, seconds,
     /// turned into an odd number of samples at each demo's own resampled
-    /// rate (at least `sg_order + 2`); `None` uses `sg_window` samples.
+    /// rate (at least `sg_order + 2`, at most [`MAX_SG_WINDOW`]); `None`
+    /// uses `sg_window` samples.
     #[serde(default)]
     pub sg_seconds: Option<f64>,
 }
@@ -36,10 +41,10 @@ impl PrepSettings {
         match self.sg_seconds {
             None => self.sg_window,
             Some(secs) => {
-                let least = self.sg_order + 2;
+                let least = self.sg_order.saturating_add(2);
                 let w = (secs / spacing).round();
                 let w = if w.is_finite() && w > 0.0 {
-                    (w as usize).clamp(least, MAX_RESAMPLED)
+                    (w.min(MAX_SG_WINDOW as f64) as usize).max(least)
                 } else {
                     least
                 };

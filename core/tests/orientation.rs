@@ -165,9 +165,19 @@ fn an_unusable_quaternion_leaves_the_demo_without_orientation() {
             ros2::encode_oriented_pose_stamped(t, "world", p, q)
         },
     );
-    let demo = only(&bytes, "zero.mcap", &LoadOptions::default());
+    let loaded = load_bytes("zero.mcap", &bytes).expect("loads");
+    let demo = &loaded.demos[0];
     assert_eq!(demo.positions.len(), N);
     assert!(demo.orientations.is_none());
+    // And the user is told.
+    assert!(
+        loaded
+            .warnings
+            .iter()
+            .any(|w| w.contains("zero.mcap: /hand: 1 of 30 samples have no usable orientation")),
+        "{:?}",
+        loaded.warnings
+    );
 }
 
 #[test]

@@ -168,3 +168,26 @@ fn every_ros1_pose_type_gives_the_same_motion() {
         }
     }
 }
+
+#[test]
+fn a_compressed_bag_killed_inside_a_chunk_keeps_its_closed_chunks() {
+    // rosbag writes a chunk's header with size 0 and fills it in when the
+    // chunk closes: the open chunk's lz4 bytes follow a header saying 0.
+    let path = bags().join("odd/killed_lz4.bag");
+    let label = path.display().to_string();
+    let loaded = load_streams(&label, SourceData::Path(&path), &LoadOptions::default())
+        .expect("a killed lz4 bag loads");
+    let text: Vec<String> = loaded.notices.iter().map(|n| n.text.clone()).collect();
+    assert!(text.iter().any(|t| t.contains("has no index")), "{text:?}");
+    assert!(text.iter().any(|t| t.contains("truncated")), "{text:?}");
+    let full = streams(&bags().join("reach/reach_3.bag"));
+    let controller = |v: &[RawDemo]| {
+        v.iter()
+            .find(|d| d.topic == "/vive/controller")
+            .cloned()
+            .expect("controller")
+    };
+    let (cut, whole) = (controller(&loaded.demos), controller(&full));
+    assert!(cut.positions.len() > 10 && cut.positions.len() < whole.positions.len());
+    assert_eq!(cut.positions[..], whole.positions[..cut.positions.len()]);
+}

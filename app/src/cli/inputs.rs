@@ -204,6 +204,12 @@ impl LoadArgs {
         ) -> dmpscope_core::Result<dmpscope_core::io::SourceDemos>,
     ) -> anyhow::Result<Vec<RawDemo>> {
         let options = self.options();
+        if self.segments != SegmentPick::All && self.demos != DemosBy::Segment {
+            print_notices(&[dmpscope_core::Notice::warning(format!(
+                "--segments {} applies only with --demos segment: every demo is kept",
+                self.segments.name()
+            ))]);
+        }
         let mut demos = Vec::new();
         for path in &self.files {
             let name = path.display().to_string();
@@ -242,8 +248,18 @@ pub struct InputArgs {
     /// An option beyond the method: the Savitzky-Golay window as a
     /// duration in seconds, an odd number of samples at each demo's own
     /// rate (at least --sg-order + 2); overrides --sg-window.
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", value_parser = positive_seconds)]
     pub sg_seconds: Option<f64>,
+}
+
+/// A duration in seconds above zero.
+fn positive_seconds(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!(
+            "expected a duration in seconds above 0, got {text:?}"
+        )),
+    }
 }
 
 impl InputArgs {

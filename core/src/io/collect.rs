@@ -408,7 +408,16 @@ impl<'o> Collector<'o> {
             .filter(|(_, _, s)| !s.positions.is_empty())
             .map(|(topic, key, s)| {
                 let given = key.is_none().then(|| names.get(&topic).cloned()).flatten();
+                let unusable = s.orientations.iter().filter(|q| q.is_none()).count();
+                let n = s.orientations.len();
                 let mut demo = finish_stream(label, &file_name, topic, key, s);
+                if unusable > 0 && unusable < n {
+                    warnings.push(format!(
+                        "{label}: {}: {unusable} of {n} samples have no usable orientation \
+                         (zero or not finite): the demo has none",
+                        demo.topic
+                    ));
+                }
                 if let Some(name) = given {
                     demo.name = name;
                 }

@@ -64,9 +64,10 @@ pub const FORMATS: [Format; 4] = [
     },
     Format {
         name: "ROS 1 bag",
-        suffixes: &[".bag"],
+        // `.bag.active`: what `rosbag record` leaves when it is killed.
+        suffixes: &[".bag", ".bag.active"],
         reader: Reader::Bag,
-        walk: &[".bag"],
+        walk: &[".bag", ".bag.active"],
         magic: b"#ROSBAG",
     },
 ];
@@ -158,6 +159,7 @@ mod tests {
         assert!(!walked(Path::new("/x/notes.zst")));
         assert!(walked(Path::new("/x/trial_04.CSV")));
         assert!(walked(Path::new("/x/demo_3.bag")));
+        assert!(walked(Path::new("/x/demo_4.bag.active")));
         assert!(!walked(Path::new("/x/metadata.yaml")));
     }
 
@@ -165,7 +167,7 @@ mod tests {
     fn dialogs_offer_each_extension_once() {
         assert_eq!(
             dialog_extensions(),
-            ["mcap", "zstd", "zst", "csv", "bag", "yaml"]
+            ["mcap", "zstd", "zst", "csv", "bag", "active", "yaml"]
         );
     }
 }

@@ -114,15 +114,18 @@ fn fields(mut bytes: &[u8]) -> std::result::Result<BTreeMap<&[u8], &[u8]>, Strin
     let mut out = BTreeMap::new();
     while !bytes.is_empty() {
         let len = le32(bytes, 0).ok_or("a header field's length is cut short")?;
+        let end = len
+            .checked_add(4)
+            .ok_or("a header field's length overflows")?;
         let field = bytes
-            .get(4..4 + len)
+            .get(4..end)
             .ok_or_else(|| format!("a header field declares {len} bytes past the header's end"))?;
         let eq = field
             .iter()
             .position(|&b| b == b'=')
             .ok_or("a header field has no '='")?;
         out.insert(&field[..eq], &field[eq + 1..]);
-        bytes = &bytes[4 + len..];
+        bytes = &bytes[end..];
     }
     Ok(out)
 }
@@ -165,6 +168,12 @@ pub fn load_bag_bytes(label: &str, bytes: &[u8], options: &LoadOptions) -> Resul
                 truncated = Some(pos);
                 break;
             }
+            // Past an open chunk of a killed recording the bytes are its
+            // compressed contents, not records: the tail.
+            Err(Cut::Bad(_)) if walk.index_pos == 0 && walk.messages > 0 => {
+                truncated = Some(pos);
+                break;
+            }
             Err(Cut::Bad(reason)) => {
                 return Err(Error::Bag {
                     at: at(),
@@ -172,6 +181,12 @@ pub fn load_bag_bytes(label: &str, bytes: &[u8], options: &LoadOptions) -> Resul
                 });
             }
         };
+        if walk.index_pos == 0 && open_compressed_chunk(&record) {
+            // rosbag writes a chunk's header with size 0 and fills it in
+            // when the chunk closes: this one never closed.
+            truncated = Some(pos);
+            break;
+        }
         let taken = take(&mut c, &mut walk, &record).map_err(|reason| Error::Bag {
             at: at(),
             reason: format!("{reason} (the record at byte {pos}); the bag is corrupt"),
@@ -191,6 +206,15 @@ pub fn load_bag_bytes(label: &str, bytes: &[u8], options: &LoadOptions) -> Resul
         return Err(e);
     }
     finish(c, walk, truncated, label)
+}
+
+/// A compressed chunk whose header still says size 0 and holds no data (a
+/// recording killed while writing it). An uncompressed one's records follow
+/// its header as plain records, which the walk reads on.
+fn open_compressed_chunk(record: &Record<'_>) -> bool {
+    record.op() == Some(op::CHUNK)
+        && record.data.is_empty()
+        && record.text("compression").is_ok_and(|c| c != "none")
 }
 
 /// The warnings of the walk, then the collector's demos.

@@ -46,8 +46,8 @@ pub struct SourceDemos {
 }
 
 /// Loads the streams of a source (one per topic and key), with the frame
-/// filter, up axis and units of `options` applied but not its grouping. A
-/// stream whose size suggests other units gets a warning.
+/// filter, up axis and units of `options` applied but not its grouping
+/// (whose demos get a warning when their size suggests other units).
 pub fn load_streams(
     name: &str,
     data: SourceData<'_>,
@@ -56,9 +56,6 @@ pub fn load_streams(
     let mut loaded = read_streams(name, data, options)?;
     for demo in &mut loaded.demos {
         options.units.apply(demo);
-        if let Some(warning) = crate::units::suspect(demo, options.units) {
-            loaded.notices.push(warning);
-        }
     }
     Ok(loaded)
 }
@@ -129,7 +126,19 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
             let mut out = SourceDemos::default();
             for file in files {
                 let label = file.display().to_string();
-                let loaded = read_file(&file, &label, options)?;
+                let is_csv = formats::by_name(&label).is_some_and(|f| f.reader == Reader::Csv);
+                let loaded = match read_file(&file, &label, options) {
+                    Ok(loaded) => loaded,
+                    // A CSV beside the recordings that is not a demo (a
+                    // table, notes) does not stop the folder.
+                    Err(e @ (Error::Decode { .. } | Error::NonFinite { .. })) if is_csv => {
+                        out.notices.push(Notice::warning(format!(
+                            "{e}: skipped (not a t,x,y,z demonstration)"
+                        )));
+                        continue;
+                    }
+                    Err(e) => return Err(e),
+                };
                 out.demos.extend(loaded.demos);
                 out.notices.extend(loaded.notices);
                 out.skipped.extend(loaded.skipped);

@@ -15,6 +15,9 @@ PoseStamped, turning as it goes), each with /tf (base -> tracker) and
                               short (a recording that was killed)
   odd/corrupt.bag             reach_3 (lz4) with bytes of its first chunk
                               flipped
+  odd/killed_lz4.bag          reach_3 (lz4) as a killed recording leaves it:
+                              no index, its last chunk's header still
+                              saying size 0, the file ending inside it
   types.bag                   reach 1 as PoseWithCovarianceStamped,
                               PointStamped, TransformStamped and Odometry
 """
@@ -158,6 +161,36 @@ def write_types(path, k):
                 writer.write(conns[topic], stamp, store.serialize_ros1(msg, names[topic]))
 
 
+def records(data):
+    """(offset, header fields {name: (value offset, value bytes)}, data offset, data length)."""
+    pos = 13
+    while pos + 4 <= len(data):
+        hlen = int.from_bytes(data[pos : pos + 4], "little")
+        fields, at = {}, pos + 4
+        while at < pos + 4 + hlen:
+            flen = int.from_bytes(data[at : at + 4], "little")
+            field = data[at + 4 : at + 4 + flen]
+            name, _, value = field.partition(b"=")
+            fields[name] = (at + 4 + len(name) + 1, value)
+            at += 4 + flen
+        dlen = int.from_bytes(data[at : at + 4], "little")
+        yield pos, fields, at, dlen
+        pos = at + 4 + dlen
+
+
+def killed(src, dst):
+    """What `rosbag record` leaves when killed inside a compressed chunk."""
+    data = bytearray(src.read_bytes())
+    chunks = [r for r in records(bytes(data)) if r[1].get(b"op", (0, b""))[1] == b"\x05"]
+    _, fields, dlen_at, _ = chunks[-1]
+    size_at = fields[b"size"][0]
+    data[size_at : size_at + 4] = (0).to_bytes(4, "little")
+    data[dlen_at : dlen_at + 4] = (0).to_bytes(4, "little")
+    pos = data.find(b"index_pos=")
+    data[pos + 10 : pos + 18] = (0).to_bytes(8, "little")
+    dst.write_bytes(bytes(data[: dlen_at + 4 + 700]))
+
+
 def main():
     compressions = ["none", "bz2", "lz4"]
     converted = HERE / "converted"
@@ -183,6 +216,7 @@ def main():
     body[pos + 10 : pos + 18] = (0).to_bytes(8, "little")
     last_chunk = body.rfind(b"compression=none", 0, index_pos)
     (HERE / "odd" / "unindexed.bag").write_bytes(bytes(body[: last_chunk + 600]))
+    killed(HERE / "reach" / "reach_3.bag", HERE / "odd" / "killed_lz4.bag")
     # Corrupt: bytes in the middle of the first lz4 chunk flipped.
     data = bytearray((HERE / "reach" / "reach_3.bag").read_bytes())
     first = data.find(b"compression=lz4")

@@ -27,7 +27,7 @@ fn sg_seconds_ui(ui: &mut egui::Ui, sg_seconds: &mut Option<f64>) {
         if let Some(secs) = sg_seconds {
             ui.add(
                 egui::DragValue::new(secs)
-                    .range(0.005..=5.0)
+                    .range(0.005..=2.0)
                     .speed(0.005)
                     .suffix(" s"),
             );
