@@ -70,7 +70,7 @@ fn millimetre_trials_give_their_reaches_in_metres() {
     // Without --units: a warning naming file and topic and the flag.
     let (_, err) = run(&[&["info", dir][..], &seg].concat());
     assert!(
-        err.contains("trial_00.csv: csv:") && err.contains("--units mm"),
+        err.contains("trial_00.csv: csv") && err.contains("--units mm"),
         "{err}"
     );
     assert!(
