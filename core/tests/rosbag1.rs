@@ -191,3 +191,35 @@ fn a_compressed_bag_killed_inside_a_chunk_keeps_its_closed_chunks() {
     assert!(cut.positions.len() > 10 && cut.positions.len() < whole.positions.len());
     assert_eq!(cut.positions[..], whole.positions[..cut.positions.len()]);
 }
+
+#[test]
+fn a_recording_without_poses_beside_the_bags_is_skipped_and_said() {
+    use dmpscope_core::io::write::{BulkTopic, write_pose_stamped_with_bulk};
+    let dir = std::env::temp_dir().join(format!("dmpscope-mixed-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("folder");
+    std::fs::copy(bags().join("reach/reach_1.bag"), dir.join("reach_1.bag")).expect("copy");
+    // A camera recording: no pose topic at all.
+    let camera = BulkTopic {
+        topic: "/camera",
+        message_bytes: 64,
+        messages: 5,
+    };
+    let file = std::fs::File::create(dir.join("camera.mcap")).expect("create");
+    write_pose_stamped_with_bulk(file, &[], false, Some(camera)).expect("write");
+    let label = dir.display().to_string();
+    let loaded = load_source(&label, SourceData::Path(&dir), &LoadOptions::default())
+        .expect("the folder loads");
+    assert!(loaded.demos.iter().any(|d| d.topic == "/vive/controller"));
+    let text: Vec<String> = loaded.notices.iter().map(|n| n.text.clone()).collect();
+    assert!(
+        text.iter()
+            .any(|t| t.contains("camera.mcap") && t.contains("/camera") && t.contains("skipped")),
+        "{text:?}"
+    );
+    // Alone, it is an error that says why.
+    std::fs::remove_file(dir.join("reach_1.bag")).expect("remove");
+    let err = load_source(&label, SourceData::Path(&dir), &LoadOptions::default())
+        .expect_err("no poses anywhere");
+    assert!(err.to_string().contains("camera.mcap"), "{err}");
+}

@@ -124,6 +124,7 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
         }
         Folder::Recordings { files, folders } => {
             let mut out = SourceDemos::default();
+            let mut no_poses = Vec::new();
             for file in files {
                 let label = file.display().to_string();
                 let is_csv = formats::by_name(&label).is_some_and(|f| f.reader == Reader::Csv);
@@ -135,6 +136,13 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
                         out.notices.push(Notice::warning(format!(
                             "{e}: skipped (not a t,x,y,z demonstration)"
                         )));
+                        continue;
+                    }
+                    // A recording of other things (joint states, flags)
+                    // beside the demonstrations does not stop the folder.
+                    Err(e @ Error::NoDemos { .. }) => {
+                        no_poses.push(e.to_string());
+                        out.notices.push(Notice::warning(format!("{e}: skipped")));
                         continue;
                     }
                     Err(e) => return Err(e),
@@ -160,11 +168,24 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
                 }
             }
             if out.demos.is_empty() {
+                let mut reason = "holds no recording with a pose topic (its files and \
+                                  sub-folders were read; see the notes)"
+                    .to_owned();
+                if !no_poses.is_empty() {
+                    let more = no_poses.len().saturating_sub(3);
+                    reason = format!(
+                        "holds no recording with a pose topic: {}{}",
+                        no_poses[..no_poses.len().min(3)].join("; "),
+                        if more > 0 {
+                            format!("; and {more} more")
+                        } else {
+                            String::new()
+                        }
+                    );
+                }
                 return Err(Error::Source {
                     path: folder.display().to_string(),
-                    reason: "holds no recording with a pose topic (its files and sub-folders \
-                             were read; see the notes)"
-                        .to_owned(),
+                    reason,
                 });
             }
             Ok(out)
