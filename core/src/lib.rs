@@ -23,6 +23,7 @@
 //! [`std::io::Read`], the landscape engine runs in slices when asked to, and
 //! rayon is used only behind the `parallel` feature.
 
+pub mod allowed;
 pub mod arrange;
 pub mod demo;
 pub mod diagnostics;
@@ -47,10 +48,12 @@ pub mod quantity;
 pub mod report;
 pub mod rest;
 pub mod rl;
+pub mod robot;
 pub mod savgol;
 pub mod segment;
 pub mod similarity;
 pub mod skill;
+pub mod skill_error;
 pub mod synth;
 pub mod text;
 pub mod tf;
@@ -69,6 +72,7 @@ pub use presets::{PAPER_PRESETS, Preset};
 pub use quantity::{PointValues, Quantity};
 pub use report::{Report, TableRow};
 pub use skill::Skill;
+pub use skill_error::SkillMode;
 
 /// The number of points on the unit-time integration grid (method.md section 2.6).
 pub const DEFAULT_GRID_POINTS: usize = 1001;

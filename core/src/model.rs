@@ -16,6 +16,7 @@ use crate::geom::Vec3;
 use crate::prepare::PreparedDemo;
 use crate::quantity::{self, PointValues, Quantity};
 use crate::similarity::{Similarity, trapezoid};
+use crate::skill_error;
 
 /// Lanes of the batched kernels used by landscapes (gain pairs sharing D/M).
 pub const LANES: usize = 16;
@@ -29,13 +30,16 @@ pub struct Model {
     projections: Vec<Projections>,
     similarity: Similarity,
     kernels: Vec<DemoKernel>,
+    /// The skill run towards each demo (method.md section 11), or why the
+    /// skill mode gives none.
+    skill: std::result::Result<Vec<DemoKernel>, String>,
 }
 
 /// One demo laid out for the integration kernel, in scaled variables
 /// `z = y - g` and `u = v dt`, so that a step is
 /// `u += (F0 + D F1 + K F2) dt^2 - K dt^2 z - D dt u; z += u`.
 #[derive(Clone, Debug)]
-struct DemoKernel {
+pub(crate) struct DemoKernel {
     /// Per grid point and axis: `[F0 dt^2, F1 dt^2, F2 dt^2, y_raw - g]`.
     steps: Vec<[[f64; 4]; 3]>,
     /// `y_raw(0) - g`.
@@ -45,6 +49,13 @@ struct DemoKernel {
 }
 
 impl DemoKernel {
+    /// A kernel from its parts: per grid point and axis
+    /// `[F0 dt^2, F1 dt^2, F2 dt^2, y_raw - g]`, `z0 = y_raw(0) - g` and
+    /// `u0 = y'(0) dt`.
+    pub(crate) fn from_parts(steps: Vec<[[f64; 4]; 3]>, z0: [f64; 3], u0: [f64; 3]) -> Self {
+        Self { steps, z0, u0 }
+    }
+
     fn new(demo: &PreparedDemo, proj: &Projections) -> Self {
         let n = demo.len();
         let dt = 1.0 / (n - 1) as f64;
@@ -90,6 +101,11 @@ pub struct PointEval {
     pub d_sum: f64,
     /// Similarity `S` (0 for fewer than two demos).
     pub s: f64,
+    /// Skill error per demo (method.md section 11), metres; NaN when the
+    /// skill mode gives no skill ([`Model::skill_refusal`] says why).
+    pub e: Vec<f64>,
+    /// `E = sum(e)`.
+    pub e_sum: f64,
 }
 
 impl PointEval {
@@ -145,6 +161,7 @@ impl Model {
             .zip(&projections)
             .map(|(d, p)| DemoKernel::new(d, p))
             .collect();
+        let skill = skill_error::kernels(&demos, &projections, settings.skill_mode);
         Ok(Self {
             demos,
             settings,
@@ -152,6 +169,7 @@ impl Model {
             projections,
             similarity,
             kernels,
+            skill,
         })
     }
 
@@ -184,15 +202,28 @@ impl Model {
             .collect()
     }
 
-    /// `d` and `a_peak` of every demo and `S` at one gain pair.
+    /// Why the model has no skill error (a frame skill whose demos' mean
+    /// displacement is zero); `None` when it has one.
+    pub fn skill_refusal(&self) -> Option<&str> {
+        self.skill.as_ref().err().map(String::as_str)
+    }
+
+    /// `d`, `a_peak` and `e` of every demo and `S` at one gain pair.
     pub fn evaluate(&self, dm: f64, km: f64) -> PointEval {
         let mut d = Vec::with_capacity(self.demos.len());
         let mut a_peak = Vec::with_capacity(self.demos.len());
-        for i in 0..self.demos.len() {
-            let (di, ai) = self.integrate::<1, true>(i, dm, [km]);
+        for kernel in &self.kernels {
+            let (di, ai) = integrate::<1, true>(kernel, dm, [km]);
             d.push(di[0]);
             a_peak.push(ai[0]);
         }
+        let e: Vec<f64> = match &self.skill {
+            Ok(skill) => skill
+                .iter()
+                .map(|k| integrate::<1, false>(k, dm, [km]).0[0])
+                .collect(),
+            Err(_) => vec![f64::NAN; self.demos.len()],
+        };
         let d_sum = d.iter().sum();
         PointEval {
             dm,
@@ -202,6 +233,8 @@ impl Model {
             a_peak,
             d_sum,
             s: self.similarity.evaluate(dm, km),
+            e_sum: e.iter().sum(),
+            e,
         }
     }
 
@@ -212,12 +245,24 @@ impl Model {
     pub fn evaluate_lanes<const L: usize>(&self, dm: f64, km: [f64; L]) -> [PointValues; L] {
         let mut d_sum = [0.0; L];
         let mut peak = [0.0f64; L];
-        for i in 0..self.demos.len() {
-            let (d, a) = self.integrate::<L, true>(i, dm, km);
+        for kernel in &self.kernels {
+            let (d, a) = integrate::<L, true>(kernel, dm, km);
             for l in 0..L {
                 d_sum[l] += d[l];
                 peak[l] = peak[l].max(a[l]);
             }
+        }
+        let mut e_sum = [0.0; L];
+        match &self.skill {
+            Ok(skill) => {
+                for kernel in skill {
+                    let e = integrate::<L, false>(kernel, dm, km).0;
+                    for l in 0..L {
+                        e_sum[l] += e[l];
+                    }
+                }
+            }
+            Err(_) => e_sum = [f64::NAN; L],
         }
         let s = self.similarity.evaluate_lanes(dm, km);
         std::array::from_fn(|l| {
@@ -225,6 +270,7 @@ impl Model {
             point[Quantity::DSum.index()] = d_sum[l];
             point[Quantity::S.index()] = s[l];
             point[Quantity::APeak.index()] = peak[l];
+            point[Quantity::ESum.index()] = e_sum[l];
             point
         })
     }
@@ -233,8 +279,8 @@ impl Model {
     /// `evaluate(dm, km).j(k)` without the per-demo lists and `a_peak`.
     pub fn j(&self, dm: f64, km: f64, k: f64) -> f64 {
         let mut d_sum = 0.0;
-        for i in 0..self.demos.len() {
-            d_sum += self.integrate::<1, false>(i, dm, [km]).0[0];
+        for kernel in &self.kernels {
+            d_sum += integrate::<1, false>(kernel, dm, [km]).0[0];
         }
         self.similarity.evaluate(dm, km) + k * d_sum
     }
@@ -264,65 +310,21 @@ impl Model {
                 reasons: Vec::new(),
             });
         }
+        let demos: Vec<PreparedDemo> = indices.iter().map(|&i| self.demos[i].clone()).collect();
+        let projections: Vec<Projections> = indices
+            .iter()
+            .map(|&i| self.projections[i].clone())
+            .collect();
+        let skill = skill_error::kernels(&demos, &projections, self.settings.skill_mode);
         Ok(Self {
-            demos: indices.iter().map(|&i| self.demos[i].clone()).collect(),
+            demos,
             settings: self.settings,
             basis: self.basis.clone(),
-            projections: indices
-                .iter()
-                .map(|&i| self.projections[i].clone())
-                .collect(),
+            projections,
             similarity: self.similarity.subset(indices),
             kernels: indices.iter().map(|&i| self.kernels[i].clone()).collect(),
+            skill,
         })
-    }
-
-    /// Integrates demo `i` at `(dm, km[l])` for each lane (method.md section
-    /// 4, in the kernel's scaled variables) and returns `d` and, when `PEAK`,
-    /// `a_peak` per lane.
-    fn integrate<const L: usize, const PEAK: bool>(
-        &self,
-        i: usize,
-        dm: f64,
-        km: [f64; L],
-    ) -> ([f64; L], [f64; L]) {
-        let kernel = &self.kernels[i];
-        let n = kernel.steps.len();
-        let dt = 1.0 / (n - 1) as f64;
-        let dt2 = dt * dt;
-        let ddt = dm * dt;
-        let kdt2 = km.map(|k| k * dt2);
-        let mut z: [[f64; L]; 3] = std::array::from_fn(|ax| [kernel.z0[ax]; L]);
-        let mut u: [[f64; L]; 3] = std::array::from_fn(|ax| [kernel.u0[ax]; L]);
-        let mut err_sum = [0.0; L];
-        let mut du2_max = [0.0f64; L];
-        for (k, step) in kernel.steps.iter().enumerate() {
-            let mut e2 = [0.0; L];
-            let mut du2 = [0.0; L];
-            for ax in 0..3 {
-                let [f0, f1, f2, target] = step[ax];
-                let fd = f0 + dm * f1;
-                for l in 0..L {
-                    let e = z[ax][l] - target;
-                    e2[l] += e * e;
-                    // a dt^2 = f dt^2 - K dt^2 (y - g) - D dt (v dt)
-                    let du = fd + km[l] * f2 - kdt2[l] * z[ax][l] - ddt * u[ax][l];
-                    if PEAK {
-                        du2[l] += du * du;
-                    }
-                    u[ax][l] += du;
-                    z[ax][l] += u[ax][l];
-                }
-            }
-            let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
-            for l in 0..L {
-                err_sum[l] += w * e2[l].sqrt();
-                if PEAK {
-                    du2_max[l] = du2_max[l].max(du2[l]);
-                }
-            }
-        }
-        (err_sum.map(|e| e * dt), du2_max.map(|m| m.sqrt() / dt2))
     }
 
     /// The full regenerated path of demo `i` at `(dm, km)`, for plots and
@@ -366,4 +368,50 @@ impl Model {
         });
         trapezoid(errs, n) / (n.max(2) - 1) as f64
     }
+}
+
+/// Integrates a kernel at `(dm, km[l])` for each lane (method.md section
+/// 4, in the kernel's scaled variables) and returns `d` (or `e`) and, when
+/// `PEAK`, `a_peak` per lane.
+fn integrate<const L: usize, const PEAK: bool>(
+    kernel: &DemoKernel,
+    dm: f64,
+    km: [f64; L],
+) -> ([f64; L], [f64; L]) {
+    let n = kernel.steps.len();
+    let dt = 1.0 / (n - 1) as f64;
+    let dt2 = dt * dt;
+    let ddt = dm * dt;
+    let kdt2 = km.map(|k| k * dt2);
+    let mut z: [[f64; L]; 3] = std::array::from_fn(|ax| [kernel.z0[ax]; L]);
+    let mut u: [[f64; L]; 3] = std::array::from_fn(|ax| [kernel.u0[ax]; L]);
+    let mut err_sum = [0.0; L];
+    let mut du2_max = [0.0f64; L];
+    for (k, step) in kernel.steps.iter().enumerate() {
+        let mut e2 = [0.0; L];
+        let mut du2 = [0.0; L];
+        for ax in 0..3 {
+            let [f0, f1, f2, target] = step[ax];
+            let fd = f0 + dm * f1;
+            for l in 0..L {
+                let e = z[ax][l] - target;
+                e2[l] += e * e;
+                // a dt^2 = f dt^2 - K dt^2 (y - g) - D dt (v dt)
+                let du = fd + km[l] * f2 - kdt2[l] * z[ax][l] - ddt * u[ax][l];
+                if PEAK {
+                    du2[l] += du * du;
+                }
+                u[ax][l] += du;
+                z[ax][l] += u[ax][l];
+            }
+        }
+        let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
+        for l in 0..L {
+            err_sum[l] += w * e2[l].sqrt();
+            if PEAK {
+                du2_max[l] = du2_max[l].max(du2[l]);
+            }
+        }
+    }
+    (err_sum.map(|e| e * dt), du2_max.map(|m| m.sqrt() / dt2))
 }

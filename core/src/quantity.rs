@@ -19,13 +19,15 @@ pub enum Quantity {
     S,
     /// The largest a_peak of any demo, m/s^2 of the unit-time motion.
     APeak,
+    /// The skill error E (method.md section 11), metres.
+    ESum,
 }
 
 /// How many quantities there are (the length of a point's values).
-pub const COUNT: usize = 3;
+pub const COUNT: usize = 4;
 
 /// Every quantity, in the order of a point's values.
-pub const ALL: [Quantity; COUNT] = [Quantity::DSum, Quantity::S, Quantity::APeak];
+pub const ALL: [Quantity; COUNT] = [Quantity::DSum, Quantity::S, Quantity::APeak, Quantity::ESum];
 
 /// A point's values, one per quantity in [`ALL`]'s order.
 pub type PointValues = [f64; COUNT];
@@ -84,6 +86,15 @@ impl Quantity {
                 unit: "m/s^2",
                 log_colour: true,
                 about: "the largest peak acceleration of any demo (unit time)",
+            },
+            Self::ESum => About {
+                label: "E",
+                title: "E [m]",
+                file: "E",
+                key: "e_sum",
+                unit: "m",
+                log_colour: true,
+                about: "the one skill's error regenerating every demo at its own start and goal",
             },
         }
     }

@@ -62,6 +62,13 @@ pub struct TableRow {
     pub s: f64,
     /// `J` for the table's `k`.
     pub j: f64,
+    /// Skill error per demo (method.md section 11), metres; NaN without
+    /// a skill error.
+    #[serde(default)]
+    pub e: Vec<f64>,
+    /// `E = sum e`.
+    #[serde(default)]
+    pub e_sum: f64,
 }
 
 impl TableRow {
@@ -77,12 +84,14 @@ impl TableRow {
             d_sum: eval.d_sum,
             s: eval.s,
             j: eval.j(k),
+            e: eval.e.clone(),
+            e_sum: eval.e_sum,
         }
     }
 
     /// The row's cells as the CSV and Markdown tables print them: name,
-    /// D/M, K/M, zeta, S, sum d, J, then `d_mean` per demo in mm, then
-    /// `a_peak` per demo.
+    /// D/M, K/M, zeta, S, sum d, J, E, then `d_mean` per demo in mm, then
+    /// `a_peak` per demo, then `e` per demo in mm.
     pub fn cells(&self) -> Vec<String> {
         let mut c = vec![
             self.name.clone(),
@@ -92,9 +101,11 @@ impl TableRow {
             format!("{:.5}", self.s),
             format!("{:.5}", self.d_sum),
             format!("{:.5}", self.j),
+            format!("{:.5}", self.e_sum),
         ];
         c.extend(self.d_mean.iter().map(|d| format!("{:.3}", d * 1e3)));
         c.extend(self.a_peak.iter().map(|a| format!("{a:.2}")));
+        c.extend(self.e.iter().map(|e| format!("{:.3}", e * 1e3)));
         c
     }
 }
@@ -178,6 +189,11 @@ pub struct Report {
     /// How the recordings were read and prepared, when the caller says.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub loading: Option<LoadingChoices>,
+    /// What the demos determine and the picked gains (method.md section
+    /// 11), when computed: its fields sit at the top level
+    /// (`skill_mode`, `e_depth`, `acceptable`, `pick`, ...).
+    #[serde(default, flatten, skip_serializing_if = "Option::is_none")]
+    pub allowed: Option<crate::allowed::Allowed>,
 }
 
 /// The loading and preparation choices behind a report (so a reader knows
@@ -357,6 +373,7 @@ impl Report {
             diagnostics_about: None,
             constrained: None,
             loading: None,
+            allowed: None,
         }
     }
 
@@ -532,29 +549,31 @@ impl Report {
         let name_w = widest(rows.iter().map(|r| r.name.as_str()), 9);
         let _ = writeln!(
             s,
-            "{:<name_w$}  {:>9}  {:>9}  {:>7}  {:>9}  {:>9}  {:>9}",
-            "gains", "D/M", "K/M", "zeta", "S", "sum d[m]", "J"
+            "{:<name_w$}  {:>9}  {:>9}  {:>7}  {:>9}  {:>9}  {:>9}  {:>9}",
+            "gains", "D/M", "K/M", "zeta", "S", "sum d[m]", "J", "E[m]"
         );
         for r in rows {
             let _ = writeln!(
                 s,
-                "{}  {:>9.3}  {:>9.3}  {:>7.3}  {:>9.5}  {:>9.5}  {:>9.5}",
+                "{}  {:>9.3}  {:>9.3}  {:>7.3}  {:>9.5}  {:>9.5}  {:>9.5}  {:>9.5}",
                 pad_right(&r.name, name_w),
                 r.dm,
                 r.km,
                 r.zeta,
                 r.s,
                 r.d_sum,
-                r.j
+                r.j,
+                r.e_sum
             );
         }
         let names = self.demo_names();
         let demo_w = widest(names.iter().map(String::as_str), 8);
         let col_w = name_w.max(9);
         type Pick = fn(&TableRow) -> &[f64];
-        let parts: [(&str, Pick, f64, usize); 2] = [
+        let parts: [(&str, Pick, f64, usize); 3] = [
             ("d_mean [mm]", |r| &r.d_mean, 1e3, 3),
             ("a_peak [m/s^2]", |r| &r.a_peak, 1.0, 2),
+            ("e, the skill's error [mm]", |r| &r.e, 1e3, 3),
         ];
         for (title, pick, scale, prec) in parts {
             let _ = writeln!(s, "\nTable I: {title}");
@@ -582,29 +601,28 @@ impl Report {
         s
     }
 
-    /// The column titles: `fixed`, then one `d_mean` column per demo
-    /// titled `d_mean(name)` and one `a_peak` column titled `a_peak(name)`.
-    fn head(
-        &self,
-        fixed: [&str; 7],
-        d_mean: impl Fn(&str) -> String,
-        a_peak: impl Fn(&str) -> String,
-    ) -> Vec<String> {
+    /// The column titles: `fixed`, then one `d_mean`, `a_peak` and `e`
+    /// column per demo, each titled by its function of the demo's name.
+    fn head(&self, fixed: [&str; 8], per_demo: [&dyn Fn(&str) -> String; 3]) -> Vec<String> {
         let names = self.demo_names();
         let mut head: Vec<String> = fixed.map(str::to_owned).into();
-        head.extend(names.iter().map(|d| d_mean(d)));
-        head.extend(names.iter().map(|d| a_peak(d)));
+        for title in per_demo {
+            head.extend(names.iter().map(|d| title(d)));
+        }
         head
     }
 
     /// Table I as Markdown (`|` in names escaped).
     pub fn markdown(&self) -> String {
-        let fixed = ["gains", "D/M", "K/M", "zeta", "S", "sum d [m]", "J"];
+        let fixed = ["gains", "D/M", "K/M", "zeta", "S", "sum d [m]", "J", "E [m]"];
         let cell = |t: &str| t.replace('|', "\\|");
         let head = self.head(
             fixed,
-            |d| format!("d_mean {} [mm]", cell(d)),
-            |d| format!("a_peak {}", cell(d)),
+            [
+                &|d| format!("d_mean {} [mm]", cell(d)),
+                &|d| format!("a_peak {}", cell(d)),
+                &|d| format!("e {} [mm]", cell(d)),
+            ],
         );
         let mut out = format!("| {} |\n|{}\n", head.join(" | "), "---|".repeat(head.len()));
         for r in &self.table {
@@ -617,11 +635,14 @@ impl Report {
     /// Table I as CSV (RFC 4180: a field with a comma, quote or line break
     /// is quoted).
     pub fn csv(&self) -> String {
-        let fixed = ["gains", "dm", "km", "zeta", "s", "d_sum", "j"];
+        let fixed = ["gains", "dm", "km", "zeta", "s", "d_sum", "j", "e_sum"];
         let head = self.head(
             fixed,
-            |d| format!("d_mean_mm:{d}"),
-            |d| format!("a_peak:{d}"),
+            [
+                &|d| format!("d_mean_mm:{d}"),
+                &|d| format!("a_peak:{d}"),
+                &|d| format!("e_mm:{d}"),
+            ],
         );
         let line = |fields: &[String]| {
             let quoted: Vec<String> = fields.iter().map(|f| csv_field(f)).collect();

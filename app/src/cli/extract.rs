@@ -6,7 +6,8 @@ use std::sync::Arc;
 
 use dmpscope_core::Report;
 use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
-use dmpscope_core::report::{Constrained, LoadingChoices};
+use dmpscope_core::allowed::{Allowed, DEFAULT_EPS, PickRule, PickSettings};
+use dmpscope_core::report::{Constrained, LoadingChoices, TableRow};
 
 use super::inputs::InputArgs;
 use super::landscape::{GridArgs, landscape_and_optimum};
@@ -41,6 +42,29 @@ pub struct Args {
     /// acceleration (any demo) stays within this many m/s^2.
     #[arg(long, value_name = "M_PER_S2")]
     a_peak_limit: Option<f64>,
+    /// The acceptable region: the grid points whose J is within this
+    /// fraction of the optimum's (method.md section 11).
+    #[arg(long, default_value_t = DEFAULT_EPS, value_name = "EPS", value_parser = accept_eps)]
+    accept_eps: f64,
+    /// How to pick the gains in the acceptable region: optimum (J's),
+    /// compliant (least K/M with zeta in [0.7, 1.5]), critical (zeta
+    /// nearest 1) or smooth (least peak acceleration). Default: optimum
+    /// when J is not flat, compliant when it is.
+    #[arg(long, value_parser = pick_rule, value_name = "RULE")]
+    pick: Option<PickRule>,
+}
+
+/// A pick rule by name.
+fn pick_rule(text: &str) -> Result<PickRule, String> {
+    text.parse()
+}
+
+/// A tolerance above zero.
+fn accept_eps(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("expected a fraction above 0 (0.02 is 2 %), got {text:?}")),
+    }
 }
 
 /// Prints `(M:D:K)`, zeta, J, the edge flag, the diagnostics and Table I.
@@ -75,6 +99,30 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         report.constrained = Some(Constrained::compute(&model, &land, args.grid.k, limit));
     }
+    let allowed = Allowed::new(
+        &model,
+        &land,
+        &optimum,
+        PickSettings {
+            rule: args.pick,
+            eps: args.accept_eps,
+            a_peak_limit: args.a_peak_limit,
+        },
+    );
+    if let Some(why) = model.skill_refusal() {
+        eprintln!("warning: no skill error E: {why}");
+    }
+    if let Some(failure) = &allowed.pick_failure {
+        eprintln!("warning: {failure}");
+    }
+    if let Some(p) = &allowed.pick {
+        let eval = model.evaluate(p.dm, p.km);
+        let name = format!("Picked ({})", p.rule.name());
+        report
+            .table
+            .insert(1, TableRow::from_eval(name, &eval, args.grid.k));
+    }
+    report.allowed = Some(allowed);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(());
@@ -82,6 +130,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     print!("{}", report.optimum_text());
     if let Some(c) = &report.constrained {
         print!("{}", c.text(Some(optimum.j)));
+    }
+    if let Some(a) = &report.allowed {
+        println!("for the robot: {}", a.optimum_robot.text());
+        println!();
+        print!("{}", a.text());
     }
     println!();
     let diag = report.diagnostics_text();

@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use dmpscope_core::arrange::{StreamFilter, unique_names};
+use dmpscope_core::SkillMode;
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::gaps::GapPolicy;
 use dmpscope_core::group::Grouping;
@@ -240,6 +241,12 @@ pub struct InputArgs {
     /// the method as written; method.md section 5).
     #[arg(long, default_value_t = DmpSettings::default().axis_sd_floor, value_name = "FRACTION")]
     pub axis_sd_floor: f64,
+    /// How the one skill of all demos follows each demo's start and goal
+    /// in the skill error E (method.md section 11): frame (turn and
+    /// scale), per-axis (the paper's factors) or none (one absolute
+    /// forcing term).
+    #[arg(long, default_value = "frame", value_parser = skill_mode, value_name = "MODE")]
+    pub skill_mode: SkillMode,
     /// A demo that cannot be used (too few samples, non-finite values):
     /// leave it out with a warning naming it and why (stop only when none
     /// is left), or stop at the first.
@@ -250,6 +257,11 @@ pub struct InputArgs {
     /// rate (at least --sg-order + 2); overrides --sg-window.
     #[arg(long, value_name = "S", value_parser = positive_seconds)]
     pub sg_seconds: Option<f64>,
+}
+
+/// A skill mode by name.
+fn skill_mode(text: &str) -> Result<SkillMode, String> {
+    text.parse()
 }
 
 /// A duration in seconds above zero.
@@ -278,6 +290,7 @@ impl InputArgs {
         DmpSettings {
             basis_functions: self.basis,
             axis_sd_floor: self.axis_sd_floor,
+            skill_mode: self.skill_mode,
             ..DmpSettings::default()
         }
     }

@@ -19,6 +19,10 @@ pub struct DmpSettings {
     /// method as written.
     #[serde(default)]
     pub axis_sd_floor: f64,
+    /// How the skill error E follows each demo's start and goal (method.md
+    /// section 11).
+    #[serde(default)]
+    pub skill_mode: crate::skill_error::SkillMode,
 }
 
 impl Default for DmpSettings {
@@ -27,6 +31,7 @@ impl Default for DmpSettings {
             basis_functions: 100,
             alpha_x: 100f64.ln(),
             axis_sd_floor: 0.0,
+            skill_mode: crate::skill_error::SkillMode::Frame,
         }
     }
 }

@@ -1,0 +1,537 @@
+//! What the demos determine, and gains for the robot where they do not
+//! (method.md section 11): the acceptable region of J, E's depth with the
+//! identifiability verdict, and a gain pair picked in the region by a
+//! named rule.
+
+use serde::{Deserialize, Serialize};
+
+use crate::diagnostics::{FLAT_DEPTH, depth};
+use crate::extract::Extraction;
+use crate::landscape::Landscape;
+use crate::model::{Model, zeta};
+use crate::quantity::Quantity;
+use crate::robot::RobotGains;
+use crate::skill_error::SkillMode;
+
+/// The default eps of the acceptable region (the flatness threshold).
+pub const DEFAULT_EPS: f64 = 0.02;
+/// The damping ratios a `compliant` pick accepts.
+pub const COMPLIANT_ZETA: [f64; 2] = [0.7, 1.5];
+
+/// A rule that picks gains in the acceptable region.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PickRule {
+    /// J's refined optimum (the paper).
+    Optimum,
+    /// The least K/M with zeta in [0.7, 1.5].
+    Compliant,
+    /// zeta nearest 1, then the least K/M.
+    Critical,
+    /// The least max-over-demos a_peak.
+    Smooth,
+}
+
+impl PickRule {
+    /// Every rule, in the order menus list them.
+    pub const ALL: [Self; 4] = [Self::Optimum, Self::Compliant, Self::Critical, Self::Smooth];
+
+    /// Its name on the command line and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Optimum => "optimum",
+            Self::Compliant => "compliant",
+            Self::Critical => "critical",
+            Self::Smooth => "smooth",
+        }
+    }
+
+    /// What it chooses, in words.
+    pub fn rule_text(self) -> &'static str {
+        match self {
+            Self::Optimum => "J's refined optimum",
+            Self::Compliant => "the least K/M with zeta in [0.7, 1.5] (soft and well damped)",
+            Self::Critical => "zeta nearest 1 (critically damped), then the least K/M",
+            Self::Smooth => "the least peak acceleration of any demo",
+        }
+    }
+}
+
+impl std::str::FromStr for PickRule {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|r| r.name() == s)
+            .ok_or_else(|| format!("unknown pick {s:?}: optimum, compliant, critical or smooth"))
+    }
+}
+
+/// The grid points whose J is within eps of J*.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Acceptable {
+    /// The tolerance: `J <= (1 + eps) J*`.
+    pub eps: f64,
+    /// The share of the grid's points in the region.
+    pub fraction: f64,
+    /// The least and greatest D/M in it (`None`: the region is empty).
+    pub dm: Option<[f64; 2]>,
+    /// The least and greatest K/M in it.
+    pub km: Option<[f64; 2]>,
+    /// The least and greatest zeta in it.
+    pub zeta: Option<[f64; 2]>,
+    /// Per grid point (row-major `[i_dm][i_km]`), whether it is in.
+    #[serde(skip)]
+    pub mask: Vec<bool>,
+}
+
+impl Acceptable {
+    /// The region of `landscape` (complete) for `k` around `j_star`.
+    pub fn new(landscape: &Landscape, k: f64, j_star: f64, eps: f64) -> Self {
+        let j = landscape.j(k);
+        let mask: Vec<bool> = j.iter().map(|&v| v <= (1.0 + eps) * j_star).collect();
+        let n_km = landscape.grid.km.n;
+        let mut range = [[f64::INFINITY, f64::NEG_INFINITY]; 3];
+        let mut count = 0usize;
+        for (idx, _) in mask.iter().enumerate().filter(|&(_, &m)| m) {
+            count += 1;
+            let (dm, km) = (landscape.dm[idx / n_km], landscape.km[idx % n_km]);
+            for (r, v) in range.iter_mut().zip([dm, km, zeta(dm, km)]) {
+                r[0] = r[0].min(v);
+                r[1] = r[1].max(v);
+            }
+        }
+        let some = |r: [f64; 2]| (count > 0).then_some(r);
+        Self {
+            eps,
+            fraction: count as f64 / mask.len().max(1) as f64,
+            dm: some(range[0]),
+            km: some(range[1]),
+            zeta: some(range[2]),
+            mask,
+        }
+    }
+
+    /// `D/M a-b, K/M c-d (zeta e-f)`, or that the region is empty.
+    pub fn text(&self) -> String {
+        match (self.dm, self.km, self.zeta) {
+            (Some(d), Some(k), Some(z)) => format!(
+                "D/M {} - {}, K/M {} - {} (zeta {:.2} - {:.2})",
+                num(d[0]),
+                num(d[1]),
+                num(k[0]),
+                num(k[1]),
+                z[0],
+                z[1]
+            ),
+            _ => "no grid point".to_owned(),
+        }
+    }
+}
+
+/// A number with about four significant digits.
+fn num(v: f64) -> String {
+    let digits = (3 - v.abs().max(1e-300).log10().floor() as i32).clamp(0, 6) as usize;
+    format!("{v:.digits$}")
+}
+
+/// A picked gain pair and everything a robot needs to know of it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Pick {
+    /// The rule that chose it.
+    pub rule: PickRule,
+    /// D/M.
+    pub dm: f64,
+    /// K/M.
+    pub km: f64,
+    /// Damping ratio.
+    pub zeta: f64,
+    /// J there.
+    pub j: f64,
+    /// S there.
+    pub s: f64,
+    /// sum d there, metres.
+    pub d_sum: f64,
+    /// E there, metres (`None` without a skill error).
+    pub e_sum: Option<f64>,
+    /// The largest a_peak of any demo there, m/s^2 of unit time.
+    pub a_peak_max: f64,
+    /// Why this rule and this point, in words.
+    pub why: String,
+    /// The gains in real time at the demos' mean duration.
+    pub robot: RobotGains,
+}
+
+/// What the demos determine and the gains picked for the robot.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Allowed {
+    /// The skill mode E assumes.
+    pub skill_mode: SkillMode,
+    /// J's depth (method.md section 9).
+    pub j_depth: Option<f64>,
+    /// Whether J is flat (the demos do not determine the gains by J).
+    pub j_flat: bool,
+    /// E's depth (`None` without a skill error).
+    pub e_depth: Option<f64>,
+    /// Whether E is flat: one skill reproduces the demos about equally
+    /// well at all gains.
+    pub e_flat: bool,
+    /// What E can and cannot say here (one demo; a refused frame skill).
+    pub e_note: Option<String>,
+    /// The acceptable region.
+    pub acceptable: Acceptable,
+    /// The picked gains (`None`: the rule found no point).
+    pub pick: Option<Pick>,
+    /// Why there is no pick, naming the nearest point.
+    pub pick_failure: Option<String>,
+    /// The optimum's gains in real time at the demos' mean duration.
+    pub optimum_robot: RobotGains,
+}
+
+/// How to pick.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PickSettings {
+    /// The rule; `None`: `optimum` when J is not flat, `compliant` when it
+    /// is.
+    pub rule: Option<PickRule>,
+    /// The region's eps.
+    pub eps: f64,
+    /// An a_peak limit (m/s^2 of unit time) every pick keeps to.
+    pub a_peak_limit: Option<f64>,
+}
+
+impl Default for PickSettings {
+    fn default() -> Self {
+        Self {
+            rule: None,
+            eps: DEFAULT_EPS,
+            a_peak_limit: None,
+        }
+    }
+}
+
+/// The depth of E: section 9's depth with E in place of J and E's grid
+/// minimum as the reference.
+pub fn e_depth(landscape: &Landscape) -> Option<f64> {
+    let e = landscape.values(Quantity::ESum);
+    let min = e
+        .iter()
+        .copied()
+        .filter(|v| v.is_finite())
+        .fold(f64::INFINITY, f64::min);
+    if !(min.is_finite() && min > 0.0) {
+        return None;
+    }
+    let (n_dm, n_km) = (landscape.grid.dm.n, landscape.grid.km.n);
+    let boundary = (0..n_dm)
+        .flat_map(|i| (0..n_km).map(move |j| (i, j)))
+        .filter(|&(i, j)| i == 0 || j == 0 || i + 1 == n_dm || j + 1 == n_km)
+        .map(|(i, j)| e[landscape.index(i, j)])
+        .filter(|v| v.is_finite())
+        .fold(f64::INFINITY, f64::min);
+    boundary
+        .is_finite()
+        .then(|| (boundary / min - 1.0).max(0.0))
+}
+
+impl Allowed {
+    /// The region, E's verdict and the pick of `model` on `landscape`
+    /// (complete) around `extraction`.
+    pub fn new(
+        model: &Model,
+        landscape: &Landscape,
+        extraction: &Extraction,
+        settings: PickSettings,
+    ) -> Self {
+        let k = extraction.k;
+        let j_depth = depth(landscape, k, extraction.j);
+        let j_flat = j_depth.is_none_or(|d| d < FLAT_DEPTH);
+        let n = model.demos().len();
+        let refusal = model.skill_refusal();
+        let e_depth = if refusal.is_some() {
+            None
+        } else {
+            e_depth(landscape)
+        };
+        let e_note = match refusal {
+            Some(why) => Some(format!("no skill error E: {why}")),
+            None if n < 2 => Some(
+                "with one demo E equals sum d: E needs two demos to say anything about \
+                 generalisation"
+                    .to_owned(),
+            ),
+            None => None,
+        };
+        let e_flat = n >= 2 && e_depth.is_some_and(|d| d < FLAT_DEPTH);
+        let acceptable = Acceptable::new(landscape, k, extraction.j, settings.eps);
+        let duration = mean_duration(model);
+        let ctx = Context {
+            model,
+            landscape,
+            extraction,
+            acceptable: &acceptable,
+            limit: settings.a_peak_limit,
+            duration,
+        };
+        let (pick, pick_failure) = match settings.rule {
+            Some(rule) => match ctx.pick(rule) {
+                Ok(p) => (
+                    Some(p.with_why(format!("asked for: {}", rule.rule_text()))),
+                    None,
+                ),
+                Err(e) => (None, Some(e)),
+            },
+            None if !j_flat => {
+                let why = format!(
+                    "J is not flat (depth {} >= {FLAT_DEPTH}): the demos determine the gains; {}",
+                    depth_text(j_depth),
+                    PickRule::Optimum.rule_text()
+                );
+                split(ctx.pick(PickRule::Optimum).map(|p| p.with_why(why)))
+            }
+            None => {
+                let why = format!(
+                    "J is flat (depth {} < {FLAT_DEPTH}): the demos allow a region of gains; \
+                     within it, {}",
+                    depth_text(j_depth),
+                    PickRule::Compliant.rule_text()
+                );
+                match ctx.pick(PickRule::Compliant) {
+                    Ok(p) => (Some(p.with_why(why)), None),
+                    Err(e) => {
+                        let why = format!(
+                            "J is flat (depth {}); {e}, so {}",
+                            depth_text(j_depth),
+                            PickRule::Critical.rule_text()
+                        );
+                        split(ctx.pick(PickRule::Critical).map(|p| p.with_why(why)))
+                    }
+                }
+            }
+        };
+        Self {
+            skill_mode: model.settings().skill_mode,
+            j_depth,
+            j_flat,
+            e_depth,
+            e_flat,
+            e_note,
+            acceptable,
+            pick,
+            pick_failure,
+            optimum_robot: RobotGains::new(extraction.eval.dm, extraction.eval.km, duration),
+        }
+    }
+
+    /// The verdict in words: never a dead end.
+    pub fn text(&self) -> String {
+        let mut s = String::new();
+        let region = self.acceptable.text();
+        let picked = match &self.pick {
+            Some(p) => format!(
+                "picked by {}: D/M {}, K/M {} (zeta {:.3})",
+                p.rule.name(),
+                num(p.dm),
+                num(p.km),
+                p.zeta
+            ),
+            None => "no pick".to_owned(),
+        };
+        if self.j_flat {
+            s.push_str(&format!("the data allow {region}; {picked}\n"));
+        } else {
+            s.push_str(&format!(
+                "acceptable (J within {} % of J*): {region}; {picked}\n",
+                100.0 * self.acceptable.eps
+            ));
+        }
+        s.push_str(&format!(
+            "  region: {:.1} % of the grid\n",
+            100.0 * self.acceptable.fraction
+        ));
+        if let Some(p) = &self.pick {
+            s.push_str(&format!("  why: {}\n", p.why));
+            s.push_str(&format!("  for the robot: {}\n", p.robot.text()));
+        }
+        if let Some(f) = &self.pick_failure {
+            s.push_str(&format!("  {f}\n"));
+        }
+        s.push_str(&self.identifiability_text());
+        s
+    }
+
+    /// E's verdict in words (skill mode, depth, what it means).
+    pub fn identifiability_text(&self) -> String {
+        if let Some(note) = &self.e_note {
+            return format!("  skill error ({}): {note}\n", self.skill_mode.name());
+        }
+        let depth = depth_text(self.e_depth);
+        if self.e_flat {
+            format!(
+                "  identifiability ({} skill: {}): E's depth {depth} < {FLAT_DEPTH}: one skill \
+                 reproduces the demos equally well at all gains, so under this generalisation \
+                 the demos carry no information about the gains. Demos that would: ones that \
+                 differ in a way the map does not explain, such as recovering from a push, or \
+                 starting off the path or at a different speed towards the same goal.\n",
+                self.skill_mode.name(),
+                self.skill_mode.assumes()
+            )
+        } else {
+            format!(
+                "  identifiability ({} skill: {}): E's depth {depth}: the demos' differences are \
+                 not all the skill's own map, and E prefers some gains\n",
+                self.skill_mode.name(),
+                self.skill_mode.assumes()
+            )
+        }
+    }
+}
+
+fn depth_text(d: Option<f64>) -> String {
+    d.map_or_else(|| "undefined".to_owned(), |v| format!("{v:.4}"))
+}
+
+fn split(r: Result<Pick, String>) -> (Option<Pick>, Option<String>) {
+    match r {
+        Ok(p) => (Some(p), None),
+        Err(e) => (None, Some(e)),
+    }
+}
+
+/// The demos' mean duration, seconds.
+pub fn mean_duration(model: &Model) -> f64 {
+    let demos = model.demos();
+    demos.iter().map(|d| d.duration_s).sum::<f64>() / demos.len().max(1) as f64
+}
+
+impl Pick {
+    fn with_why(mut self, why: String) -> Self {
+        self.why = why;
+        self
+    }
+}
+
+/// What a pick looks at.
+struct Context<'a> {
+    model: &'a Model,
+    landscape: &'a Landscape,
+    extraction: &'a Extraction,
+    acceptable: &'a Acceptable,
+    limit: Option<f64>,
+    duration: f64,
+}
+
+impl Context<'_> {
+    fn pick(&self, rule: PickRule) -> Result<Pick, String> {
+        let (dm, km) = match rule {
+            PickRule::Optimum => self.optimum()?,
+            _ => self.grid_pick(rule)?,
+        };
+        let e = self.model.evaluate(dm, km);
+        Ok(Pick {
+            rule,
+            dm,
+            km,
+            zeta: e.zeta,
+            j: e.j(self.extraction.k),
+            s: e.s,
+            d_sum: e.d_sum,
+            e_sum: e.e_sum.is_finite().then_some(e.e_sum),
+            a_peak_max: e.a_peak.iter().copied().fold(0.0, f64::max),
+            why: String::new(),
+            robot: RobotGains::new(dm, km, self.duration),
+        })
+    }
+
+    /// The refined optimum, or under a limit the constrained one.
+    fn optimum(&self) -> Result<(f64, f64), String> {
+        let x = &self.extraction.eval;
+        let peak = x.a_peak.iter().copied().fold(0.0, f64::max);
+        match self.limit {
+            Some(limit) if peak > limit => {
+                crate::extract::constrained(self.model, self.landscape, self.extraction.k, limit)
+                    .map(|r| (r.dm, r.km))
+                    .ok_or_else(|| {
+                        format!("no gains on the grid keep every demo's a_peak within {limit}")
+                    })
+            }
+            _ => Ok((x.dm, x.km)),
+        }
+    }
+
+    /// The region's points (within the limit) as `(dm, km, zeta, a_peak)`.
+    fn candidates(&self) -> Vec<[f64; 4]> {
+        let n_km = self.landscape.grid.km.n;
+        let peak = self.landscape.a_peak();
+        self.acceptable
+            .mask
+            .iter()
+            .enumerate()
+            .filter(|&(i, &m)| m && self.limit.is_none_or(|l| peak[i] <= l))
+            .map(|(i, _)| {
+                let (dm, km) = (self.landscape.dm[i / n_km], self.landscape.km[i % n_km]);
+                [dm, km, zeta(dm, km), peak[i]]
+            })
+            .collect()
+    }
+
+    fn grid_pick(&self, rule: PickRule) -> Result<(f64, f64), String> {
+        let points = self.candidates();
+        let limit = self
+            .limit
+            .map_or(String::new(), |l| format!(" with a_peak within {l}"));
+        if points.is_empty() {
+            return Err(format!(
+                "no grid point is within {} % of J*{limit}: no {} pick",
+                100.0 * self.acceptable.eps,
+                rule.name()
+            ));
+        }
+        // Ties: the smaller K/M, then the smaller D/M.
+        let tie = |a: &[f64; 4], b: &[f64; 4]| a[1].total_cmp(&b[1]).then(a[0].total_cmp(&b[0]));
+        let band_distance = |z: f64| (COMPLIANT_ZETA[0] - z).max(z - COMPLIANT_ZETA[1]).max(0.0);
+        let best = match rule {
+            PickRule::Compliant => {
+                let inside = points.iter().filter(|p| band_distance(p[2]) == 0.0);
+                match inside.min_by(|a, b| tie(a, b)) {
+                    Some(p) => *p,
+                    None => {
+                        let near = points
+                            .iter()
+                            .min_by(|a, b| {
+                                band_distance(a[2])
+                                    .total_cmp(&band_distance(b[2]))
+                                    .then(tie(a, b))
+                            })
+                            .copied()
+                            .unwrap_or(points[0]);
+                        return Err(format!(
+                            "no gains in the acceptable region{limit} have zeta in [{}, {}]; the \
+                             nearest is D/M {}, K/M {} (zeta {:.3})",
+                            COMPLIANT_ZETA[0],
+                            COMPLIANT_ZETA[1],
+                            num(near[0]),
+                            num(near[1]),
+                            near[2]
+                        ));
+                    }
+                }
+            }
+            PickRule::Critical => *points
+                .iter()
+                .min_by(|a, b| {
+                    (a[2] - 1.0)
+                        .abs()
+                        .total_cmp(&(b[2] - 1.0).abs())
+                        .then(tie(a, b))
+                })
+                .unwrap_or(&points[0]),
+            PickRule::Smooth | PickRule::Optimum => *points
+                .iter()
+                .min_by(|a, b| a[3].total_cmp(&b[3]).then(tie(a, b)))
+                .unwrap_or(&points[0]),
+        };
+        Ok((best[0], best[1]))
+    }
+}

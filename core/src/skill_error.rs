@@ -1,0 +1,160 @@
+//! The skill error E (method.md section 11): how well the one skill of all
+//! demos (section 10), generalised back to each demo's own start and goal,
+//! reproduces that demo.
+//!
+//! The skill's forcing term is `mean_j Q_j f_j` and each demo's fitted
+//! `f_j = F0_j + D/M F1_j + K/M F2_j` is linear in the gains, as are the
+//! maps `Q_j` (from `d_j` to `d_bar`) and `P_i` (from `d_bar` back to
+//! `d_i`), which do not depend on them. So the forcing term that the skill
+//! runs with towards demo i is `G0_i + D/M G1_i + K/M G2_i` with
+//! `G_c,i = P_i mean_j Q_j F_c,j`: one kernel per demo of the same shape as
+//! the regeneration's, built once per model. A gain pair then costs one
+//! more integration per demo, and E comes out of the landscape's kernel.
+
+use serde::{Deserialize, Serialize};
+
+use crate::dmp::Projections;
+use crate::generalise::{Mapping, Scaling};
+use crate::geom::Vec3;
+use crate::model::DemoKernel;
+use crate::prepare::PreparedDemo;
+
+/// How the one skill follows each demo's start and goal (method.md
+/// section 11).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SkillMode {
+    /// Frame-independent: the smallest rotation between displacements
+    /// times the ratio of their lengths (section 10's `frame` scaling).
+    #[default]
+    Frame,
+    /// The paper's per-axis factors (section 10's `paper` scaling).
+    PerAxis,
+    /// No map: the demos are assumed to share one absolute forcing term.
+    None,
+}
+
+impl SkillMode {
+    /// Every mode, in the order menus list them.
+    pub const ALL: [Self; 3] = [Self::Frame, Self::PerAxis, Self::None];
+
+    /// Its name on the command line and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Frame => "frame",
+            Self::PerAxis => "per-axis",
+            Self::None => "none",
+        }
+    }
+
+    /// The generalisation it assumes, in words.
+    pub fn assumes(self) -> &'static str {
+        match self {
+            Self::Frame => "the forcing term turns and scales with the goal (frame-independent)",
+            Self::PerAxis => "the forcing term scales per axis with the goal (the paper's factor)",
+            Self::None => "the forcing term stays the same whatever the goal (no spatial scaling)",
+        }
+    }
+
+    /// The scaling of section 10 it maps with (`None` for the identity).
+    fn scaling(self) -> Option<Scaling> {
+        match self {
+            Self::Frame => Some(Scaling::Frame),
+            Self::PerAxis => Some(Scaling::Paper),
+            Self::None => None,
+        }
+    }
+}
+
+impl std::str::FromStr for SkillMode {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| format!("unknown skill mode {s:?}: frame, per-axis or none"))
+    }
+}
+
+/// The smallest mean displacement a frame skill accepts, metres.
+pub const MIN_FRAME_DISPLACEMENT: f64 = 1e-9;
+
+/// The kernels of the skill run towards each demo, or why there are none
+/// (a frame skill without a direction).
+pub(crate) fn kernels(
+    demos: &[PreparedDemo],
+    projections: &[Projections],
+    mode: SkillMode,
+) -> Result<Vec<DemoKernel>, String> {
+    let own: Vec<Vec3> = demos.iter().map(|d| d.goal - d.y_raw[0]).collect();
+    let nf = demos.len() as f64;
+    let mut mean_d = Vec3::zeros();
+    for d in &own {
+        for a in 0..3 {
+            mean_d[a] += d[a];
+        }
+    }
+    let mean_d = mean_d.map(|v| v / nf);
+    let map = |from: Vec3, to: Vec3, who: &str| -> Result<Mapping, String> {
+        match mode.scaling() {
+            None => Ok(Mapping::IDENTITY),
+            Some(scaling) => Mapping::between(from, to, scaling).map_err(|e| format!("{who}: {e}")),
+        }
+    };
+    if mode == SkillMode::Frame && crate::mapping::norm(mean_d) < MIN_FRAME_DISPLACEMENT {
+        return Err(format!(
+            "the demos' mean displacement (goal - start) is below {MIN_FRAME_DISPLACEMENT} m \
+             (they go opposite ways), so a frame-independent skill has no direction; use \
+             --skill-mode per-axis"
+        ));
+    }
+    let to_skill: Vec<Mapping> = demos
+        .iter()
+        .zip(&own)
+        .map(|(d, &di)| map(di, mean_d, &d.name))
+        .collect::<Result<_, _>>()?;
+    let n = demos.first().map_or(0, PreparedDemo::len);
+    let dt = 1.0 / (n.max(2) - 1) as f64;
+    let dt2 = dt * dt;
+    // The skill's three gain-linear parts, times dt^2, and its v0 dt.
+    let mut parts = vec![[Vec3::zeros(); 3]; n];
+    let mut v0 = Vec3::zeros();
+    for ((proj, q), demo) in projections.iter().zip(&to_skill).zip(demos) {
+        for (acc, fk) in parts.iter_mut().zip(&proj.f) {
+            for (c, acc_c) in acc.iter_mut().enumerate() {
+                let mapped = q.apply(Vec3::from_fn(|ax, _| fk[ax][c] * dt2));
+                *acc_c += mapped;
+            }
+        }
+        v0 += q.apply(demo.yd[0]);
+    }
+    for acc in &mut parts {
+        for c in acc.iter_mut() {
+            *c = c.map(|v| v / nf);
+        }
+    }
+    let v0 = v0.map(|v| v / nf);
+    demos
+        .iter()
+        .zip(&own)
+        .map(|(demo, &di)| {
+            let back = map(mean_d, di, &demo.name)?;
+            let g = demo.goal;
+            let steps = parts
+                .iter()
+                .zip(&demo.y_raw)
+                .map(|(p, yr)| {
+                    let [g0, g1, g2] = p.map(|v| back.apply(v));
+                    std::array::from_fn(|ax| [g0[ax], g1[ax], g2[ax], yr[ax] - g[ax]])
+                })
+                .collect();
+            let u0 = back.apply(v0).map(|v| v * dt);
+            Ok(DemoKernel::from_parts(
+                steps,
+                std::array::from_fn(|ax| demo.y_raw[0][ax] - g[ax]),
+                u0.into(),
+            ))
+        })
+        .collect()
+}
