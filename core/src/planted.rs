@@ -15,8 +15,15 @@
 //! Every demo's target forcing term is then the shared one plus a constant
 //! per axis (`K (g_demo - g_estimated)`), which standardisation removes: at
 //! the planted gains S is 0 up to the preprocessing's errors.
+//!
+//! With [`PlantedSpec::scale_forcing`] the shared forcing term is instead
+//! mapped to each demo's goal (turned and scaled with it, for `Frame`): the
+//! demos then differ only by the map a frame-independent DMP applies
+//! itself, the case in which the skill error E is flat at every gain
+//! (method.md section 11).
 
 use crate::dmp::{Basis, DmpSettings, fit_weights};
+use crate::generalise::Mapping;
 use crate::synth::{Rng, SynthDemo};
 
 /// Substeps of the fine integration per step of the unit-time grid.
@@ -39,6 +46,12 @@ pub struct PlantedSpec {
     pub demos: usize,
     /// The seed.
     pub seed: u64,
+    /// How the shared forcing term follows each demo's goal: `None` keeps
+    /// it absolute (the same in every demo, as a DMP without spatial
+    /// scaling); `Some(scaling)` maps it from the nominal reach to the
+    /// demo's as section 10's scaling does (`Frame`: turned and scaled
+    /// with the goal).
+    pub scale_forcing: Option<crate::generalise::Scaling>,
 }
 
 /// Minimum-jerk profile on [0, 1] and its first two derivatives.
@@ -107,7 +120,13 @@ fn nominal_forcing(dm: f64, km: f64) -> Forcing {
 
 /// The unit-time path towards `goal` (from rest at the origin) on a fine
 /// grid of `(GRID - 1) * SUBSTEPS + 1` points.
-fn integrate(f: &Forcing, dm: f64, km: f64, goal: [f64; 3]) -> Vec<[f64; 3]> {
+fn integrate(
+    f: &Forcing,
+    map: &crate::generalise::Mapping,
+    dm: f64,
+    km: f64,
+    goal: [f64; 3],
+) -> Vec<[f64; 3]> {
     let steps = (GRID - 1) * SUBSTEPS;
     let dt = 1.0 / steps as f64;
     let alpha = DmpSettings::default().alpha_x;
@@ -116,7 +135,7 @@ fn integrate(f: &Forcing, dm: f64, km: f64, goal: [f64; 3]) -> Vec<[f64; 3]> {
     path.push(y);
     for k in 0..steps {
         let x = (-alpha * k as f64 * dt).exp();
-        let fx = f.at(x);
+        let fx = map.apply(f.at(x).into());
         for ax in 0..3 {
             let a = -dm * v[ax] - km * (y[ax] - goal[ax]) + fx[ax];
             v[ax] += a * dt;
@@ -165,7 +184,11 @@ pub fn planted_demos(spec: &PlantedSpec, epoch_ns: i64) -> Vec<SynthDemo> {
             let p0: [f64; 3] = std::array::from_fn(|ax| start[ax] + 0.02 * rng.normal());
             let mut goal = turn(NOMINAL.map(|v| v * stretch), angle);
             goal[2] += lift;
-            let path = integrate(&forcing, spec.dm, spec.km, goal);
+            let map = spec
+                .scale_forcing
+                .and_then(|s| Mapping::between(NOMINAL.into(), goal.into(), s).ok())
+                .unwrap_or(Mapping::IDENTITY);
+            let path = integrate(&forcing, &map, spec.dm, spec.km, goal);
             let n = (duration * RATE_HZ).round() as usize + 1;
             let first_ns = epoch_ns + i as i64 * 20_000_000_000;
             let samples = (0..n)

@@ -614,7 +614,16 @@ impl Report {
 
     /// Table I as Markdown (`|` in names escaped).
     pub fn markdown(&self) -> String {
-        let fixed = ["gains", "D/M", "K/M", "zeta", "S", "sum d [m]", "J", "E [m]"];
+        let fixed = [
+            "gains",
+            "D/M",
+            "K/M",
+            "zeta",
+            "S",
+            "sum d [m]",
+            "J",
+            "E [m]",
+        ];
         let cell = |t: &str| t.replace('|', "\\|");
         let head = self.head(
             fixed,

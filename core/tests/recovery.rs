@@ -69,6 +69,7 @@ fn diagnose_with(
 
 fn planted(dm: f64, km: f64, noise_m: f64) -> Vec<RawDemo> {
     let spec = PlantedSpec {
+        scale_forcing: None,
         dm,
         km,
         noise_m,

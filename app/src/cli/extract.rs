@@ -5,8 +5,8 @@
 use std::sync::Arc;
 
 use dmpscope_core::Report;
-use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
 use dmpscope_core::allowed::{Allowed, DEFAULT_EPS, PickRule, PickSettings};
+use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
 use dmpscope_core::report::{Constrained, LoadingChoices, TableRow};
 
 use super::inputs::InputArgs;
@@ -63,7 +63,9 @@ fn pick_rule(text: &str) -> Result<PickRule, String> {
 fn accept_eps(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        _ => Err(format!("expected a fraction above 0 (0.02 is 2 %), got {text:?}")),
+        _ => Err(format!(
+            "expected a fraction above 0 (0.02 is 2 %), got {text:?}"
+        )),
     }
 }
 

@@ -29,6 +29,11 @@ pub struct Args {
     /// Position noise of the planted demos (standard deviation per axis), mm.
     #[arg(long, default_value_t = 0.1, requires = "planted")]
     noise_mm: f64,
+    /// How the planted demos' shared forcing term follows each demo's
+    /// goal: absolute (the same term in every demo) or frame (turned and
+    /// scaled with the goal, as a frame-independent DMP does).
+    #[arg(long, value_enum, default_value_t = ScaleForcing::Absolute, requires = "planted")]
+    scale_forcing: ScaleForcing,
     /// Write uncompressed chunks instead of zstd.
     #[arg(long)]
     uncompressed: bool,
@@ -36,6 +41,15 @@ pub struct Args {
     /// (a large recording in which the poses are a small part).
     #[arg(long, value_name = "MB", default_value_t = 0)]
     padding_mb: usize,
+}
+
+/// How planted demos share their forcing term.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum ScaleForcing {
+    /// One absolute forcing term in every demo.
+    Absolute,
+    /// Turned and scaled with each demo's goal.
+    Frame,
 }
 
 /// The start of the first demo's recording (2025-11-22T10:00:00Z).
@@ -61,6 +75,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 noise_m: args.noise_mm * 1e-3,
                 demos: args.demos,
                 seed: args.seed,
+                scale_forcing: match args.scale_forcing {
+                    ScaleForcing::Absolute => None,
+                    ScaleForcing::Frame => Some(dmpscope_core::Scaling::Frame),
+                },
             };
             planted_demos(&spec, EPOCH_NS)
         }

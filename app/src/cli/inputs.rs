@@ -7,8 +7,8 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use dmpscope_core::arrange::{StreamFilter, unique_names};
 use dmpscope_core::SkillMode;
+use dmpscope_core::arrange::{StreamFilter, unique_names};
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::gaps::GapPolicy;
 use dmpscope_core::group::Grouping;
