@@ -61,7 +61,7 @@ fn landscape_json_has_exactly_the_documented_shape() {
     assert_eq!(
         sorted_keys(&doc),
         [
-            "a_peak", "d_sum", "demos", "dm", "j", "k", "km", "optimum", "s", "table"
+            "a_peak", "d_sum", "demos", "dm", "e_sum", "j", "k", "km", "optimum", "s", "table"
         ]
     );
     let n = 12;
@@ -136,10 +136,67 @@ fn extract_json_is_the_same_report_as_landscape_json() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report: Value = serde_json::from_slice(&out.stdout).expect("json");
     let keys = sorted_keys(&report);
-    assert_eq!(keys, ["demos", "k", "loading", "optimum", "table"]);
-    for key in keys.into_iter().filter(|k| *k != "loading") {
+    assert_eq!(
+        keys,
+        [
+            "acceptable",
+            "demos",
+            "e_depth",
+            "e_flat",
+            "e_note",
+            "j_depth",
+            "j_flat",
+            "k",
+            "loading",
+            "optimum",
+            "optimum_robot",
+            "pick",
+            "pick_failure",
+            "skill_mode",
+            "table"
+        ]
+    );
+    for key in ["demos", "k", "optimum"] {
         assert_eq!(report[key], doc[key], "{key}");
     }
+    // Table I: the landscape's rows with the pick's row after Extracted.
+    let mut table = report["table"].as_array().expect("table").clone();
+    let picked = table.remove(1);
+    assert!(
+        picked["name"]
+            .as_str()
+            .expect("name")
+            .starts_with("Picked (")
+    );
+    assert_eq!(Value::Array(table), doc["table"]);
+    // The pick: where, by which rule and why, and for the robot.
+    let pick = &report["pick"];
+    let mut pick_keys = sorted_keys(pick);
+    pick_keys.retain(|k| *k != "robot");
+    assert_eq!(
+        pick_keys,
+        [
+            "a_peak_max",
+            "d_sum",
+            "dm",
+            "e_sum",
+            "j",
+            "km",
+            "rule",
+            "s",
+            "why",
+            "zeta"
+        ]
+    );
+    assert_eq!(picked["dm"], pick["dm"]);
+    assert_eq!(report["skill_mode"], "frame");
+    let acceptable = &report["acceptable"];
+    assert_eq!(acceptable["eps"].as_f64(), Some(0.02));
+    let robot = &pick["robot"];
+    let km = pick["km"].as_f64().expect("km");
+    let t = robot["duration_s"].as_f64().expect("T");
+    let stiffness = robot["stiffness_per_mass"].as_f64().expect("K/M real");
+    assert!((stiffness - km / (t * t)).abs() <= 1e-12 * stiffness);
     // The loading choices: the defaults, the method as written.
     assert_eq!(report["loading"]["units"], "m");
     assert_eq!(report["loading"]["trim_rest"], false);

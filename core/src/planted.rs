@@ -120,13 +120,7 @@ fn nominal_forcing(dm: f64, km: f64) -> Forcing {
 
 /// The unit-time path towards `goal` (from rest at the origin) on a fine
 /// grid of `(GRID - 1) * SUBSTEPS + 1` points.
-fn integrate(
-    f: &Forcing,
-    map: &crate::generalise::Mapping,
-    dm: f64,
-    km: f64,
-    goal: [f64; 3],
-) -> Vec<[f64; 3]> {
+fn integrate(f: &Forcing, map: &Mapping, dm: f64, km: f64, goal: [f64; 3]) -> Vec<[f64; 3]> {
     let steps = (GRID - 1) * SUBSTEPS;
     let dt = 1.0 / steps as f64;
     let alpha = DmpSettings::default().alpha_x;

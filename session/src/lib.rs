@@ -16,6 +16,8 @@
 //! landscape + k                               -> the extraction (a job, one at a time)
 //! extraction + diagnostics settings           -> the diagnostics (a job, progressive)
 //! extraction + a_peak limit                   -> the constrained optimum (a job)
+//! extraction + pick rule, eps, a_peak limit   -> the acceptable region, E's verdict
+//!                                                and the pick (a job)
 //! model + k                                   -> the paper's rows of Table I
 //! model + operating point (+ k for its J)     -> the operating point's paths (and row),
 //!                                                its forcing terms and S shares
@@ -30,6 +32,7 @@
 //! crate names no GUI and no platform: cargo refuses it egui, eframe, wgpu
 //! and web-sys.
 
+mod allowed;
 mod commands;
 pub mod diagnostics;
 pub mod executor;
@@ -59,6 +62,7 @@ use dmpscope_core::{
     DemoInfo, Extraction, Model, Notice, PointEval, RawDemo, Report, Rollout, TableRow,
 };
 
+pub use allowed::AllowedView;
 pub use commands::Command;
 pub use diagnostics::DiagSnapshot;
 pub use executor::{Executor, PageTime};
@@ -136,6 +140,8 @@ pub struct Session {
     diagnostics: Stage<DiagKey, DiagSnapshot>,
     /// `Some(None)`: no gains within the a_peak limit.
     constrained: Stage<ConstrainedKey, Option<Refined>>,
+    /// The acceptable region, E's verdict and the pick.
+    allowed: Stage<allowed::AllowedKey, AllowedView>,
     /// The paper's gains evaluated, per model version.
     presets: Stage<u64, Vec<(String, PointEval)>>,
     /// The k of the last update (Table I's rows are made for it).
@@ -168,6 +174,7 @@ impl Session {
             extraction: Stage::default(),
             diagnostics: Stage::default(),
             constrained: Stage::default(),
+            allowed: Stage::default(),
             presets: Stage::default(),
             k: dmpscope_core::DEFAULT_K,
             point: Stage::default(),
@@ -258,6 +265,7 @@ impl Session {
         self.update_extraction(settings);
         self.update_diagnostics(settings);
         self.update_constrained(settings);
+        self.update_allowed(settings);
         self.update_presets();
         self.update_point(settings);
         self.update_generalised(settings);
@@ -409,6 +417,15 @@ impl Session {
             .map(|x| TableRow::from_eval("Extracted", &x.eval, x.k))
             .into_iter()
             .collect();
+        if let Some(view) = self.allowed()
+            && let (Some(p), Some(eval)) = (&view.allowed.pick, &view.pick_eval)
+        {
+            rows.push(TableRow::from_eval(
+                format!("Picked ({})", p.rule.name()),
+                eval,
+                k,
+            ));
+        }
         if let Some(evals) = self.presets.value() {
             rows.extend(
                 evals
@@ -439,6 +456,7 @@ impl Session {
             let limit = f64::from_bits(key.limit);
             report.constrained = Some(Constrained::from_refined(model, limit, found.as_ref()));
         }
+        report.allowed = self.allowed().map(|v| v.allowed.clone());
         Some(report)
     }
 

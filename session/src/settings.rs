@@ -34,6 +34,12 @@ pub struct Settings {
     /// The largest peak acceleration allowed, m/s^2 (masks the J map and
     /// gives the constrained optimum); `None`: no limit.
     pub a_peak_limit: Option<f64>,
+    /// How the gains are picked in the acceptable region (method.md
+    /// section 11); `None`: optimum when J is not flat, compliant when it
+    /// is.
+    pub pick: Option<dmpscope_core::allowed::PickRule>,
+    /// The acceptable region's eps: J within this fraction of J*.
+    pub accept_eps: f64,
 }
 
 impl Default for Settings {
@@ -51,6 +57,8 @@ impl Default for Settings {
             log_colour: true,
             diagnostics: DiagSettings::default(),
             a_peak_limit: None,
+            pick: None,
+            accept_eps: dmpscope_core::allowed::DEFAULT_EPS,
         }
     }
 }

@@ -36,7 +36,9 @@ pub enum Source {
 }
 
 impl Source {
-    /// The bundled sample, built into the program (native and web alike).
+    /// The bundled reach sample (10 tracked human reaches whose J is flat),
+    /// built into the program (native and web alike). The app opens on
+    /// [`Source::planted_sample`].
     pub fn sample() -> Self {
         Self::bundled("reach10.mcap", &REACH10)
     }
@@ -59,12 +61,12 @@ impl Source {
     pub fn samples() -> [(Self, &'static str); 2] {
         [
             (
-                Self::sample(),
-                "reach10: 10 tracked reaches, some hesitating (the optimum is on the box edge)",
-            ),
-            (
                 Self::planted_sample(),
                 "planted8: 8 demos from one DMP at D/M 10.73, K/M 20.71 (the method recovers them)",
+            ),
+            (
+                Self::sample(),
+                "reach10: 10 tracked reaches, J flat: what the demos allow, and a pick",
             ),
         ]
     }

@@ -106,7 +106,7 @@ try {
   await until("the first frame", (s) => s.frames >= 1, 20000);
   figures.first_frame_s = (Date.now() - t0) / 1000;
   const listed = await until("the sample's demos", (s) => s.demos?.length > 0 && !s.loading, 20000);
-  check(listed.demos.length === 10, `the sample's 10 demos are listed (${listed.demos[0]} ...)`);
+  check(listed.demos.length === 8, `the planted sample's 8 demos are listed (${listed.demos[0]} ...)`);
   const computing = await until("the landscape to start", (s) => s.landscape.total > 0, 20000);
   const startedAt = await page.evaluate(() => performance.now());
   const full = await until("the full landscape", (s) => s.landscape.total > 0 && s.landscape.done === s.landscape.total, 60000);
@@ -129,7 +129,7 @@ try {
   const bin = process.env.DMPSCOPE_BIN ??
     [join(repo, "target", "debug", "dmpscope"), join(repo, "target", "release", "dmpscope")].find(existsSync);
   if (!bin) fail("no native dmpscope binary to compare with (cargo build first)");
-  const report = JSON.parse(execFileSync(bin, ["extract", join(repo, "assets", "reach10.mcap"), "--json"],
+  const report = JSON.parse(execFileSync(bin, ["extract", join(repo, "assets", "planted8.mcap"), "--json"],
     { stdio: ["ignore", "pipe", "ignore"] }).toString());
   const native = report.optimum;
   const rel = (a, b) => Math.abs(a - b) / Math.max(Math.abs(b), 1e-300);
@@ -173,7 +173,7 @@ try {
   figures.diagnostics_parts_from_workers = diag.workers.parts_from_workers;
   check(diag.workers.parts_from_workers >= diag.diagnostics.total && diag.workers.alive === diag.workers.workers,
     `the workers computed the ${diag.diagnostics.total} resampled extractions (${diag.diagnostics.compute_ms.toFixed(0)} ms on the page's thread)`);
-  check(bd.flat === nd.flat && bd.flat === true, "the browser says the sample does not determine the gains, as the CLI");
+  check(bd.flat === nd.flat && bd.flat === false, "the browser says the planted sample determines the gains, as the CLI");
   check(diagWorst <= 1e-9, `the browser's diagnostic values equal the native ones (relative difference ${diagWorst.toExponential(2)})`);
   check(gainWorst <= 1e-5, `the browser's diagnostic gains match the native ones (relative difference ${gainWorst.toExponential(2)})`);
   check(bd.bootstrap.on_edge_fraction === nd.bootstrap.on_edge_fraction && bd.bootstrap.n === nd.bootstrap.n, "the same bootstrap edge fraction");
@@ -189,7 +189,7 @@ try {
   check(!trained.rl.stopped && trained.rl.decisions === rlSteps && trained.workers.runs_from_workers >= 1,
     `a worker trained ${trained.rl.decisions} decisions (runs from workers: ${trained.workers.runs_from_workers})`);
   const rlJson = join(profile, "rl_native.json");
-  execFileSync(bin, ["rl", join(repo, "assets", "reach10.mcap"), "--demo", "1", "--dm", String(trained.rl.dm),
+  execFileSync(bin, ["rl", join(repo, "assets", "planted8.mcap"), "--demo", "1", "--dm", String(trained.rl.dm),
     "--km", String(trained.rl.km), "--steps", String(rlSteps), "--seed", "1", "--out", rlJson], { stdio: "ignore" });
   const nativeRl = JSON.parse(await readFile(rlJson, "utf8"));
   const curveWorst = worstOf(trained.rl.returns.map((r, i) => [r, nativeRl.returns[i]]));
@@ -244,7 +244,7 @@ try {
       target.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true }));
     }
   }, sample);
-  const dropped = await until("the dropped file's demos", (s) => s.demos.length === 20 && !s.loading, 20000);
+  const dropped = await until("the dropped file's demos", (s) => s.demos.length === 18 && !s.loading, 20000);
   check(dropped.demos.some((d) => d.startsWith("dropped.mcap")), "a dropped file is loaded");
 
   // Open… (the top bar's second button): with the click's user activation
@@ -258,7 +258,7 @@ try {
     mimeType: "application/octet-stream",
     buffer: await readFile(join(here, "..", "..", "assets", "reach10.mcap")),
   };
-  await until("the landscape of the 20 demos", (s) => s.landscape.total > 0 && s.landscape.done === s.landscape.total && s.optimum !== null, 60000);
+  await until("the landscape of the 18 demos", (s) => s.landscape.total > 0 && s.landscape.done === s.landscape.total && s.optimum !== null, 60000);
   const chooser = page.waitForEvent("filechooser", { timeout: 15000 }).then((c) => ["chooser", c]);
   const overlay = page.waitForSelector("#rfd-input", { state: "attached", timeout: 15000 }).then(() => ["overlay"]);
   await click(105, 12);
@@ -272,7 +272,7 @@ try {
   console.log(`Open… answered with ${how === "chooser" ? "the browser's file chooser" : "rfd's dialog"}`);
   chooser.catch(() => {});
   overlay.catch(() => {});
-  const picked = await until("the picked file's demos", (s) => s.demos.length === 30 && !s.loading, 20000);
+  const picked = await until("the picked file's demos", (s) => s.demos.length === 28 && !s.loading, 20000);
   check(picked.demos.some((d) => d.startsWith("picked.mcap")), "a file picked with Open… is loaded");
 
   await mkdir(out, { recursive: true });
@@ -316,7 +316,7 @@ try {
   // answering in another order, and the same optimum.
   await page.addInitScript(() => Object.defineProperty(navigator, "hardwareConcurrency", { get: () => 5 }));
   await page.reload();
-  const reloaded = await until("the reloaded app", (s) => s.demos?.length === 10 && !s.loading, 20000);
+  const reloaded = await until("the reloaded app", (s) => s.demos?.length === 8 && !s.loading, 20000);
   check(reloaded.op[0] === 4 && reloaded.op[1] === 4, `settings survive a reload (operating point ${JSON.stringify(reloaded.op)})`);
   const five = await until("the landscape and optimum with 5 workers",
     (s) => s.landscape?.total === 16384 && s.landscape.done === 16384 && s.optimum, 60000);
@@ -342,7 +342,7 @@ try {
   // without a name that says what it is (bz2 chunks, known by its first
   // bytes); each gives its pose topics and names the custom type it skips.
   const bags = join(here, "..", "..", "core", "tests", "bags", "reach");
-  for (const [file, name, total] of [["reach_3.bag", "vive.bag", 12], ["reach_2.bag", "upload", 14]]) {
+  for (const [file, name, total] of [["reach_3.bag", "vive.bag", 10], ["reach_2.bag", "upload", 12]]) {
     const b64 = (await readFile(join(bags, file))).toString("base64");
     await page.evaluate(([b64, name]) => {
       const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));

@@ -38,7 +38,8 @@ pub struct DmpApp {
 }
 
 impl DmpApp {
-    /// The app on `files` (the bundled sample when empty), with settings
+    /// The app on `files` (the bundled planted8 sample when empty: demos that
+    /// determine the gains; reach10 is one click away in Samples), with settings
     /// restored from eframe's storage and background work on `runner` (the
     /// platform's executor: threads natively, Web Workers in the browser).
     pub fn new(cc: &eframe::CreationContext<'_>, files: Vec<PathBuf>, runner: Runner) -> Self {
@@ -54,11 +55,11 @@ impl DmpApp {
         app
     }
 
-    /// The app on `sources` (the bundled sample when empty) with explicit
+    /// The app on `sources` (the bundled planted8 sample when empty) with explicit
     /// settings and runner (tests use [`Runner::inline`]).
     pub fn with_runner(settings: Settings, sources: Vec<Source>, runner: Runner) -> Self {
         let sources = if sources.is_empty() {
-            vec![Source::sample()]
+            vec![Source::planted_sample()]
         } else {
             sources
         };

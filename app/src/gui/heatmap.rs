@@ -54,7 +54,13 @@ pub struct MapInput<'a> {
     pub iso_zeta: bool,
     /// Small dots to draw (the bootstrap optima), `(D/M, K/M)`.
     pub cloud: &'a [(f64, f64)],
+    /// The acceptable region (method.md section 11), per grid point: its
+    /// outline is drawn.
+    pub region: Option<&'a [bool]>,
 }
+
+/// The colour of the acceptable region's outline.
+pub const REGION_COLOUR: Color32 = Color32::from_rgb(120, 255, 140);
 
 /// The colour of masked points.
 const MASKED: Color32 = Color32::from_rgb(90, 70, 70);
@@ -213,6 +219,9 @@ pub fn show(
             &area.font,
         );
     }
+    if let Some(region) = input.region {
+        region_outline(&area, region);
+    }
     heatmap_points_ui(&area, input.cloud, markers, *op);
     heatmap_readout_ui(&area, &response, input);
     if (response.dragged() || response.clicked())
@@ -339,6 +348,48 @@ fn heatmap_colour_bar_ui(area: &MapArea, side: f32, (lo, hi): (f64, f64), log_co
             area.font.clone(),
             area.text,
         );
+    }
+}
+
+/// The outline of a region of grid points: the texel edges between a
+/// point in it and one out of it (or the map's border).
+fn region_outline(area: &MapArea, region: &[bool]) {
+    let (n_dm, n_km) = (area.grid.dm.n, area.grid.km.n);
+    if region.len() != n_dm * n_km {
+        return;
+    }
+    let (w, h) = (
+        area.map.width() / n_dm as f32,
+        area.map.height() / n_km as f32,
+    );
+    let inside = |i: isize, j: isize| {
+        i >= 0
+            && j >= 0
+            && (i as usize) < n_dm
+            && (j as usize) < n_km
+            && region[i as usize * n_km + j as usize]
+    };
+    let stroke = Stroke::new(1.5, REGION_COLOUR);
+    for i in 0..n_dm as isize {
+        for j in 0..n_km as isize {
+            if !inside(i, j) {
+                continue;
+            }
+            let x0 = area.map.left() + i as f32 * w;
+            let y0 = area.map.bottom() - (j + 1) as f32 * h;
+            let (x1, y1) = (x0 + w, y0 + h);
+            let edges = [
+                (inside(i - 1, j), [Pos2::new(x0, y0), Pos2::new(x0, y1)]),
+                (inside(i + 1, j), [Pos2::new(x1, y0), Pos2::new(x1, y1)]),
+                (inside(i, j - 1), [Pos2::new(x0, y1), Pos2::new(x1, y1)]),
+                (inside(i, j + 1), [Pos2::new(x0, y0), Pos2::new(x1, y0)]),
+            ];
+            for (neighbour, line) in edges {
+                if !neighbour {
+                    area.painter.line_segment(line, stroke);
+                }
+            }
+        }
     }
 }
 

@@ -99,6 +99,10 @@ fn maps(
             shown.values(Quantity::APeak)[idx],
         ]
     };
+    let region = session
+        .allowed()
+        .map(|v| v.allowed.acceptable.mask.as_slice())
+        .filter(|m| m.len() == grid.len());
     let log_colour = s.log_colour;
     let limit = s.a_peak_limit;
     let mut op = s.op;
@@ -122,6 +126,7 @@ fn maps(
                 .map(|l| (shown.values(Quantity::APeak), l)),
             iso_zeta: true,
             cloud: if on_j { &cloud } else { &[] },
+            region,
         };
         heatmap::show(ui, cache, &input, &markers, &mut op, side);
     };
@@ -174,6 +179,14 @@ fn markers(session: &Session) -> Vec<Marker> {
             dm: m.dm,
             km: m.km,
             colour: Color32::from_rgb(120, 230, 255),
+        });
+    }
+    if let Some(p) = session.allowed().and_then(|v| v.allowed.pick.as_ref()) {
+        markers.push(Marker {
+            label: format!("pick ({})", p.rule.name()),
+            dm: p.dm,
+            km: p.km,
+            colour: super::allowed::PICK_COLOUR,
         });
     }
     if let Some(Some(c)) = session.constrained() {

@@ -81,6 +81,8 @@ pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             x.eval.dm, x.eval.km, x.eval.zeta, x.j
         ));
     }
+    super::allowed::allowed_ui(ui, cx);
+    let s = &mut *cx.settings;
     if x.on_edge() {
         ui.colored_label(
             Color32::from_rgb(240, 180, 80),

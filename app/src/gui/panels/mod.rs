@@ -5,6 +5,7 @@
 //!
 //! [`Command`]: super::Command
 
+mod allowed;
 mod central;
 mod context;
 mod demos;

@@ -103,6 +103,22 @@ pub fn settings_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         )
         .labelled_by(l.id);
         ui.end_row();
+        let l = ui.label("E: skill mode").on_hover_text(
+            "how the one skill of all demos follows each demo's start and goal in the skill \
+             error E: frame (turned and scaled with the goal), per-axis (the paper's factors) \
+             or none (one absolute forcing term)",
+        );
+        egui::ComboBox::from_id_salt("skill mode")
+            .selected_text(s.dmp.skill_mode.name())
+            .show_ui(ui, |ui| {
+                for mode in dmpscope_core::SkillMode::ALL {
+                    ui.selectable_value(&mut s.dmp.skill_mode, mode, mode.name())
+                        .on_hover_text(mode.assumes());
+                }
+            })
+            .response
+            .labelled_by(l.id);
+        ui.end_row();
     });
     // The window is odd: an even value moves on the way it was going.
     let w = &mut s.prep.sg_window;

@@ -1,0 +1,93 @@
+//! What the demos allow (method.md section 11), in the Gains section: the
+//! pick rule and the region's eps, the verdict (the region's ranges, the
+//! pick and why, E's identifiability sentence), the gains for the robot at
+//! the pick and the operating point, and a button to go to the pick.
+
+use dmpscope_core::allowed::{PickRule, mean_duration};
+use dmpscope_core::robot::RobotGains;
+use eframe::egui::{self, Color32};
+
+use super::PanelCtx;
+
+/// The colour of the pick's marker and text.
+pub const PICK_COLOUR: Color32 = Color32::from_rgb(120, 255, 140);
+
+/// The "What the demos allow" part of the Gains section.
+pub fn allowed_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let session = cx.session;
+    let s = &mut *cx.settings;
+    ui.horizontal(|ui| {
+        let auto = "auto (optimum if J is not flat, else compliant)";
+        egui::ComboBox::from_label("pick")
+            .selected_text(s.pick.map_or(auto, PickRule::name))
+            .show_ui(ui, |ui| {
+                ui.selectable_value(&mut s.pick, None, auto);
+                for rule in PickRule::ALL {
+                    ui.selectable_value(&mut s.pick, Some(rule), rule.name())
+                        .on_hover_text(rule.rule_text());
+                }
+            });
+    });
+    ui.horizontal(|ui| {
+        let l = ui.label("acceptable: J within").on_hover_text(
+            "the acceptable region: every grid point whose J is within this fraction of the \
+             optimum's (drawn as a green contour on the maps)",
+        );
+        ui.add(
+            egui::DragValue::new(&mut s.accept_eps)
+                .range(0.001..=10.0)
+                .speed(0.005)
+                .fixed_decimals(3),
+        )
+        .labelled_by(l.id);
+        ui.label("of J*");
+    });
+    let Some(view) = session.allowed() else {
+        ui.weak("What the demos allow: waiting for the full landscape and the optimum");
+        return;
+    };
+    let a = &view.allowed;
+    let region = a.acceptable.text();
+    let share = 100.0 * a.acceptable.fraction;
+    if a.j_flat {
+        ui.label(format!(
+            "The data allow {region} ({share:.1} % of the grid)."
+        ));
+    } else {
+        ui.label(format!("Acceptable: {region} ({share:.1} % of the grid)."));
+    }
+    match &a.pick {
+        Some(p) => {
+            ui.colored_label(
+                PICK_COLOUR,
+                format!(
+                    "Picked by {}: D/M {:.3}, K/M {:.3} (zeta {:.3})",
+                    p.rule.name(),
+                    p.dm,
+                    p.km,
+                    p.zeta
+                ),
+            );
+            ui.weak(&p.why);
+            if ui
+                .button("Go to the pick")
+                .on_hover_text(
+                    "make the pick the operating point (Table I, New target, Export, RL use it)",
+                )
+                .clicked()
+            {
+                s.op = (p.dm, p.km);
+            }
+            ui.label(format!("For the robot: {}", p.robot.text()));
+        }
+        None => {
+            let why = a.pick_failure.as_deref().unwrap_or("no pick");
+            ui.colored_label(Color32::from_rgb(240, 180, 80), why);
+        }
+    }
+    if let Some(model) = session.model() {
+        let op = RobotGains::new(s.op.0, s.op.1, mean_duration(model));
+        ui.weak(format!("Operating point for the robot: {}", op.text()));
+    }
+    ui.label(a.identifiability_text().trim());
+}

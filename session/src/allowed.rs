@@ -1,0 +1,94 @@
+//! The stage of what the demos determine (method.md section 11): the
+//! acceptable region, E's verdict and the picked gains, computed as a job
+//! from the complete landscape and the extraction whenever either, the
+//! pick rule, the region's eps or the a_peak limit changes.
+
+use dmpscope_core::allowed::{Allowed, PickSettings};
+use dmpscope_core::{Level, PointEval};
+
+use crate::jobs::Once;
+use crate::stage::Polled;
+use crate::stages::ExtractionKey;
+use crate::{Session, Settings};
+
+/// What the verdict and the pick are computed for (`f64`s by their bits).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct AllowedKey {
+    pub(crate) extraction: ExtractionKey,
+    pub(crate) rule: Option<dmpscope_core::allowed::PickRule>,
+    pub(crate) eps: u64,
+    pub(crate) limit: Option<u64>,
+}
+
+/// The verdict with the pick's evaluation (its row of Table I).
+pub struct AllowedView {
+    /// The region, E's verdict and the pick.
+    pub allowed: Allowed,
+    /// Every demo's numbers at the pick.
+    pub pick_eval: Option<PointEval>,
+}
+
+impl Session {
+    /// Brings the verdict up to date (after the extraction's stage).
+    pub(crate) fn update_allowed(&mut self, settings: &Settings) {
+        if self.extraction.waiting() {
+            self.poll_allowed();
+            return;
+        }
+        let (Some(extraction), Some(x), Some((model, _)), Some(shown)) = (
+            self.extraction.key().copied(),
+            self.extraction(),
+            self.model_and_version(),
+            &self.shown,
+        ) else {
+            self.allowed.clear();
+            return;
+        };
+        if !self.landscape_complete() {
+            self.allowed.clear();
+            return;
+        }
+        let limit = settings.a_peak_limit.filter(|l| l.is_finite() && *l > 0.0);
+        let eps = if settings.accept_eps.is_finite() && settings.accept_eps > 0.0 {
+            settings.accept_eps
+        } else {
+            dmpscope_core::allowed::DEFAULT_EPS
+        };
+        let key = AllowedKey {
+            extraction,
+            rule: settings.pick,
+            eps: eps.to_bits(),
+            limit: limit.map(f64::to_bits),
+        };
+        let pick = PickSettings {
+            rule: settings.pick,
+            eps,
+            a_peak_limit: limit,
+        };
+        let runner = &self.runner;
+        let x = x.clone();
+        self.allowed.ensure_serial(key, || {
+            let landscape = shown.snapshot.landscape.clone();
+            let work = Once::new(move || {
+                let allowed = Allowed::new(&model, &landscape, &x, pick);
+                let pick_eval = allowed.pick.as_ref().map(|p| model.evaluate(p.dm, p.km));
+                AllowedView { allowed, pick_eval }
+            });
+            Ok(runner.start("the acceptable region and the pick", work))
+        });
+        self.poll_allowed();
+    }
+
+    fn poll_allowed(&mut self) {
+        if let Polled::Failed(e) = self.allowed.poll() {
+            self.messages
+                .say(Level::Error, format!("the acceptable region: {e}"));
+        }
+    }
+
+    /// What the demos determine and the picked gains (`None` until the
+    /// landscape and the extraction are complete).
+    pub fn allowed(&self) -> Option<&AllowedView> {
+        self.allowed.value()
+    }
+}
