@@ -144,6 +144,7 @@ fn extract_json_is_the_same_report_as_landscape_json() {
             "e_depth",
             "e_flat",
             "e_note",
+            "e_range",
             "j_depth",
             "j_flat",
             "k",

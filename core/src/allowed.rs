@@ -177,6 +177,9 @@ pub struct Allowed {
     /// Whether E is flat: one skill reproduces the demos about equally
     /// well at all gains.
     pub e_flat: bool,
+    /// The least and greatest E over the grid, metres (`None` without a
+    /// skill error).
+    pub e_range: Option<[f64; 2]>,
     /// What E can and cannot say here (one demo; a refused frame skill).
     pub e_note: Option<String>,
     /// The acceptable region.
@@ -264,6 +267,15 @@ impl Allowed {
             None => None,
         };
         let e_flat = n >= 2 && e_depth.is_some_and(|d| d < FLAT_DEPTH);
+        let e_range = refusal.is_none().then(|| {
+            landscape
+                .values(Quantity::ESum)
+                .iter()
+                .filter(|v| v.is_finite())
+                .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &v| {
+                    [lo.min(v), hi.max(v)]
+                })
+        });
         let acceptable = Acceptable::new(landscape, k, extraction.j, settings.eps);
         let duration = mean_duration(model);
         let ctx = Context {
@@ -316,6 +328,7 @@ impl Allowed {
             j_flat,
             e_depth,
             e_flat,
+            e_range,
             e_note,
             acceptable,
             pick,
@@ -347,8 +360,8 @@ impl Allowed {
             ));
         }
         s.push_str(&format!(
-            "  region: {:.1} % of the grid\n",
-            100.0 * self.acceptable.fraction
+            "  region: {} of the grid\n",
+            percent(self.acceptable.fraction)
         ));
         if let Some(p) = &self.pick {
             s.push_str(&format!("  why: {}\n", p.why));
@@ -366,7 +379,15 @@ impl Allowed {
         if let Some(note) = &self.e_note {
             return format!("  skill error ({}): {note}\n", self.skill_mode.name());
         }
-        let depth = depth_text(self.e_depth);
+        let depth = match self.e_range {
+            Some([lo, hi]) => format!(
+                "{} (E {} - {} m over the grid)",
+                depth_text(self.e_depth),
+                num(lo),
+                num(hi)
+            ),
+            None => depth_text(self.e_depth),
+        };
         if self.e_flat {
             format!(
                 "  identifiability ({} skill: {}): E's depth {depth} < {FLAT_DEPTH}: one skill \
@@ -385,6 +406,16 @@ impl Allowed {
                 self.skill_mode.assumes()
             )
         }
+    }
+}
+
+/// A share as a percentage with the digits it needs (`0.02 %`, `12.5 %`).
+pub fn percent(share: f64) -> String {
+    let p = 100.0 * share;
+    if p == 0.0 || p >= 1.0 {
+        format!("{p:.1} %")
+    } else {
+        format!("{p:.2} %")
     }
 }
 

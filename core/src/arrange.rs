@@ -1,4 +1,4 @@
-//! From a source's streams to its demonstrations (method.md section 11):
+//! From a source's streams to its demonstrations (method.md section 13):
 //! the streams the user chose (`--topic` / `--exclude` patterns), split at
 //! breaks in time ([`crate::gaps`]), screened (a stream whose stamp never
 //! advances or whose positions span less than [`StreamFilter::min_extent_m`]

@@ -1,4 +1,4 @@
-//! Time that goes wrong inside a stream (method.md section 11): a clock that
+//! Time that goes wrong inside a stream (method.md section 13): a clock that
 //! jumps back, or a dropout, found in file order. A break is a step between
 //! consecutive stamps longer than `max(0.1 s, 10 x the median interval)`
 //! either way (small reorderings, which the stable sort of preparation

@@ -1,5 +1,5 @@
 //! From raw demonstrations to a fitted [`Model`], with an explicit policy for
-//! the demos that cannot be used (method.md section 11): the CLI and the app
+//! the demos that cannot be used (method.md section 13): the CLI and the app
 //! both build their model here.
 
 use serde::{Deserialize, Serialize};

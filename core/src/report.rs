@@ -12,7 +12,8 @@
 //!   "optimum": null | {"dm", "km", "zeta", "j", "s", "d_sum",
 //!                      "on_edge", "edge", "grid_min_j", "iterations", "converged"},
 //!   "table": [{"name", "dm", "km", "zeta", "d_mean": [m per demo],
-//!              "a_peak": [m/s^2 per demo], "d_sum", "s", "j"}],
+//!              "a_peak": [m/s^2 per demo], "d_sum", "s", "j",
+//!              "e": [m per demo], "e_sum"}],
 //!   "diagnostics": {"depth", "flat", "k_ratio", "balanced_k",      (when computed)
 //!                   "s_minimum": {"dm", "km", "s"},
 //!                   "demos": [{"name", "s_share", "loo": {"dm", "km", "j", "on_edge"}}],
@@ -22,14 +23,28 @@
 //!   "constrained": {"a_peak_limit", "optimum": null | {"dm", "km",   (with an a_peak limit)
 //!                   "j", "a_peak", "on_edge"}},
 //!   "loading": {"units", "up", "demos", "segments", "trim_rest",    (extract)
-//!               "sg_window", "sg_order", "sg_seconds"}
+//!               "sg_window", "sg_order", "sg_seconds"},
+//!   "skill_mode": "frame" | "per-axis" | "none",   (the verdict of method.md
+//!   "j_depth", "j_flat",                           section 11, `allowed`
+//!   "e_depth", "e_flat",                           flattened: extract, and
+//!   "e_range": null | [lo, hi],                    the app's export once
+//!   "e_note": null | "...",                        computed)
+//!   "acceptable": {"eps", "fraction", "dm": null | [lo, hi],
+//!                  "km": null | [lo, hi], "zeta": null | [lo, hi]},
+//!   "pick": null | {"rule", "dm", "km", "zeta", "j", "s", "d_sum", "e_sum",
+//!                   "a_peak_max", "why", "robot": {..as optimum_robot}},
+//!   "pick_failure": null | "...",
+//!   "optimum_robot": {"duration_s", "stiffness_per_mass", "damping_per_mass",
+//!                     "natural_frequency_rad_s", "natural_frequency_hz",
+//!                     "zeta", "settling_time_s"}
 //! }
 //! ```
 //!
-//! A diagnostic that cannot be computed (one demo: S-based ones) is `null`.
+//! A diagnostic that cannot be computed (one demo: S-based ones) is `null`;
+//! so are `e` and `e_sum` without a skill error (a refused frame skill).
 //!
 //! `edge` names the box sides the optimum lies on ("" when interior);
-//! `d_mean` and `a_peak` follow `demos`' order.
+//! `d_mean`, `a_peak` and `e` follow `demos`' order.
 
 use crate::text::{pad_left, pad_right, widest};
 use std::fmt::Write as _;

@@ -1,4 +1,4 @@
-//! A TF buffer (method.md section 11): the transforms of `/tf` and
+//! A TF buffer (method.md section 13): the transforms of `/tf` and
 //! `/tf_static` (and Foxglove `FrameTransform`s) as a tree of frames, each frame's transform to its parent
 //! over time, so a frame's position can be expressed in any other frame of
 //! the tree at any stamp, as ROS's `tf2` buffer does: static transforms hold

@@ -310,7 +310,7 @@ try {
 
   // Settings persist in the browser's storage: a preset chosen, the page
   // reloaded, the operating point is still there.
-  await click(270, 395); // "Hrstc4" in the side panel (below Demos, messages and the Recording row)
+  await click(270, 485); // "Hrstc4" in the side panel (below Demos, the planted sample's rest note and the Recording row)
   await until("the Hrstc4 button's effect", (s) => s.op[0] === 4 && s.op[1] === 4, 10000);
   // The reloaded page reports 5 cores: 5 workers (on this machine's 2),
   // answering in another order, and the same optimum.

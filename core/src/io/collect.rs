@@ -480,7 +480,7 @@ impl<'o> Collector<'o> {
     }
 }
 
-/// Re-expresses a TF stream in `fixed` (method.md section 11): each sample
+/// Re-expresses a TF stream in `fixed` (method.md section 13): each sample
 /// becomes the frame's origin and orientation in `fixed` at its stamp. Gives a note when
 /// transforms were held past their recorded span.
 fn in_fixed_frame(

@@ -59,6 +59,11 @@ pub struct Gains {
     pub real_time: GainPair,
     /// Damping ratio `D / (2 sqrt(K))` (the same in both).
     pub zeta: f64,
+    /// Natural frequency `sqrt(K/M) / tau`, rad/s.
+    pub natural_frequency_rad_s: f64,
+    /// The 2 % settling time of the spring-damper at `tau`, seconds
+    /// (docs/method.md section 11).
+    pub settling_time_s: f64,
 }
 
 /// The radial basis.
@@ -259,6 +264,8 @@ pub fn dmp_document(
                 k: primitive.km / (tau * tau),
             },
             zeta: crate::model::zeta(primitive.dm, primitive.km),
+            natural_frequency_rad_s: primitive.km.sqrt() / tau,
+            settling_time_s: crate::robot::settling_time(primitive.dm, primitive.km) * tau,
         },
         alpha_x: primitive.alpha_x,
         basis: BasisDoc {

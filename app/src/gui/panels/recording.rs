@@ -1,5 +1,5 @@
 //! The Recording section: every stream each opened recording holds, kept or
-//! skipped and why (method.md section 11), with a tick to include a stream
+//! skipped and why (method.md section 13), with a tick to include a stream
 //! the filter skipped or leave out one it kept; the topics not read
 //! and a source's load error; for demos per segment, the thresholds as
 //! sliders and each kept stream's timeline of speed with its segments. A
