@@ -64,6 +64,7 @@ fn the_sample_loads_and_the_optimum_is_extracted() {
         names,
         [
             "Extracted",
+            "Picked (compliant)",
             "Ours",
             "Hrstc1",
             "Hrstc2",
@@ -72,6 +73,27 @@ fn the_sample_loads_and_the_optimum_is_extracted() {
             "Operating point"
         ]
     );
+}
+
+#[test]
+fn a_flat_j_gives_a_pick_and_go_to_the_pick_moves_the_operating_point() {
+    let mut h = harness();
+    let (dm, km, why) = {
+        let view = h.state().session().allowed().expect("the verdict");
+        assert!(view.allowed.j_flat, "reach10's J is flat");
+        let p = view.allowed.pick.as_ref().expect("a pick");
+        (p.dm, p.km, p.why.clone())
+    };
+    assert!(why.contains("J is flat"), "{why}");
+    h.get_by_label_contains("What the demos allow: picked by compliant")
+        .click();
+    h.run_steps(2);
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "Go to the pick")
+        .click();
+    h.run_steps(3);
+    assert_eq!(h.state().settings.op, (dm, km));
+    let row = operating_point_row(&h);
+    assert_eq!((row.dm, row.km), (dm, km));
 }
 
 #[test]

@@ -36,7 +36,7 @@ fn the_json_has_the_documented_keys_and_reads_back() {
     assert_eq!(
         row_keys,
         [
-            "a_peak", "d_mean", "d_sum", "dm", "j", "km", "name", "s", "zeta"
+            "a_peak", "d_mean", "d_sum", "dm", "e", "e_sum", "j", "km", "name", "s", "zeta"
         ]
     );
     let back: Report = serde_json::from_value(value).expect("reads back");
@@ -52,15 +52,17 @@ fn csv_markdown_and_text_show_every_row_and_demo() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(lines.len(), 1 + report.table.len());
     for line in &lines {
-        assert_eq!(line.split(',').count(), 7 + 2 * names.len(), "{line}");
+        assert_eq!(line.split(',').count(), 8 + 3 * names.len(), "{line}");
     }
-    assert!(lines[0].starts_with("gains,dm,km,zeta,s,d_sum,j,d_mean_mm:reach10.mcap:/demo_01"));
+    assert!(
+        lines[0].starts_with("gains,dm,km,zeta,s,d_sum,j,e_sum,d_mean_mm:reach10.mcap:/demo_01")
+    );
     let md = report.markdown();
     assert_eq!(md.lines().count(), 2 + report.table.len());
     assert!(
         md.lines()
             .nth(1)
-            .is_some_and(|l| l.matches("---|").count() == 7 + 2 * names.len())
+            .is_some_and(|l| l.matches("---|").count() == 8 + 3 * names.len())
     );
     let text = report.table_text();
     for r in &report.table {
@@ -69,7 +71,7 @@ fn csv_markdown_and_text_show_every_row_and_demo() {
     for n in &names {
         assert_eq!(
             text.matches(n.as_str()).count(),
-            2,
+            3,
             "{n}: once per per-demo table"
         );
     }

@@ -12,8 +12,29 @@ use super::PanelCtx;
 /// The colour of the pick's marker and text.
 pub const PICK_COLOUR: Color32 = Color32::from_rgb(120, 255, 140);
 
-/// The "What the demos allow" part of the Gains section.
+/// The "What the demos allow" part of the Gains section: one line with
+/// the pick (or why there is none) that opens to the rule, the region, the
+/// verdict and the robot's gains.
 pub fn allowed_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let summary = match cx.session.allowed().map(|v| &v.allowed) {
+        Some(a) => match &a.pick {
+            Some(p) => format!(
+                "What the demos allow: picked by {}, D/M {:.3}, K/M {:.3}",
+                p.rule.name(),
+                p.dm,
+                p.km
+            ),
+            None => "What the demos allow: no pick (open for why)".to_owned(),
+        },
+        None => "What the demos allow".to_owned(),
+    };
+    egui::CollapsingHeader::new(summary)
+        .id_salt("what the demos allow")
+        .show(ui, |ui| allowed_body_ui(ui, cx));
+}
+
+/// The rule, the region, the verdict and the robot's gains.
+fn allowed_body_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let session = cx.session;
     let s = &mut *cx.settings;
     ui.horizontal(|ui| {
