@@ -202,6 +202,15 @@ impl Model {
             .collect()
     }
 
+    /// The same model without its skill error (E is NaN and costs
+    /// nothing): what `dmpscope bench` compares the landscape with.
+    pub fn without_skill_error(&self) -> Self {
+        Self {
+            skill: Err("the skill error is switched off".to_owned()),
+            ..self.clone()
+        }
+    }
+
     /// Why the model has no skill error (a frame skill whose demos' mean
     /// displacement is zero); `None` when it has one.
     pub fn skill_refusal(&self) -> Option<&str> {

@@ -136,6 +136,15 @@ try {
   const worst = Math.max(rel(done.optimum.dm, native.dm), rel(done.optimum.km, native.km), rel(done.optimum.j, native.j));
   figures.optimum_vs_native_rel = worst;
   check(worst <= 1e-12, `the browser's optimum equals the native one (relative difference ${worst.toExponential(2)})`);
+  // What the demos allow (E computed in the workers): the same verdict,
+  // pick and E's depth as the native CLI.
+  const allowed = (await until("the verdict and the pick", (s) => s.allowed && s.allowed.pick, 30000)).allowed;
+  const pickWorst = Math.max(rel(allowed.pick.dm, report.pick.dm), rel(allowed.pick.km, report.pick.km),
+    rel(allowed.pick.e_sum, report.pick.e_sum), rel(allowed.e_depth + 1, report.e_depth + 1),
+    rel(allowed.acceptable.fraction + 1, report.acceptable.fraction + 1));
+  figures.pick_vs_native_rel = pickWorst;
+  check(allowed.pick.rule === report.pick.rule && allowed.skill_mode === report.skill_mode && pickWorst <= 1e-12,
+    `the browser's pick (${allowed.pick.rule}), E at it and E's depth equal the native ones (${pickWorst.toExponential(2)})`);
   // Issue 15: the landscape is computed by Web Workers, none of it on the
   // page's thread (which only moves tiles and draws).
   const cores = await page.evaluate(() => navigator.hardwareConcurrency);

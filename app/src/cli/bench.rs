@@ -58,11 +58,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     let grid = Grid { dm: axis, km: axis };
     let cancel = std::sync::atomic::AtomicBool::new(false);
+    // With E and without, alternated so both see the same machine.
+    let without_e = std::sync::Arc::new(model.without_skill_error());
     let mut land_ms = Vec::new();
+    let mut plain_ms = Vec::new();
     for _ in 0..args.repeat.max(1) {
         let t = Instant::now();
         let land = landscape::compute(model.clone(), grid, &cancel, &mut |_, _| {})?;
         land_ms.push(t.elapsed().as_secs_f64() * 1e3);
+        std::hint::black_box(land);
+        let t = Instant::now();
+        let land = landscape::compute(without_e.clone(), grid, &cancel, &mut |_, _| {})?;
+        plain_ms.push(t.elapsed().as_secs_f64() * 1e3);
         std::hint::black_box(land);
     }
     // Operating points along a path across the default box, as a drag would visit.
@@ -91,10 +98,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     println!("load + prepare + fit:                 {load_ms:8.2} ms");
     let lm = median(&land_ms);
     println!(
-        "landscape {0}x{0} (median of {1}):      {lm:8.2} ms   (goal 250 ms: {2:.2}x)",
+        "landscape {0}x{0} with E (median of {1}): {lm:8.2} ms   (goal 250 ms: {2:.2}x)",
         args.grid,
         args.repeat.max(1),
         lm / 250.0
+    );
+    let pm = median(&plain_ms);
+    println!(
+        "landscape {0}x{0} without E (median):    {pm:8.2} ms   (with E / without: {1:.2}, goal <= 2)",
+        args.grid,
+        lm / pm
     );
     let om = median(&op_ms);
     let rm = median(&rollout_ms);

@@ -150,6 +150,7 @@ impl DmpApp {
             "optimum": session.extraction().map(|x| serde_json::json!({
                 "dm": x.eval.dm, "km": x.eval.km, "j": x.j,
             })),
+            "allowed": session.allowed().map(|v| &v.allowed),
             "landscape": {"done": done, "total": total},
             "landscape_points_here": crate::session::landscape::points_computed_here(),
             "workers": session.worker_stats(),

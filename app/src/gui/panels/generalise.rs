@@ -79,6 +79,7 @@ pub fn generalise_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     if let Some(own) = own_target(model, spec.source) {
         generalise_target_ui(ui, &mut spec, own);
     }
+    generalise_gains_ui(ui, cx);
     generalise_result_ui(ui, session);
     generalise_export_ui(ui, cx);
     ui.weak("3D view: drag the white goal ring or start disc (Shift: height)");
@@ -212,6 +213,25 @@ fn generalise_result_ui(ui: &mut egui::Ui, session: &Session) {
 }
 
 /// The button exporting the DMP at this target for a robot.
+/// The gains it runs at (the operating point's) and, when they differ, a
+/// button that takes the gains picked in What the demos allow.
+fn generalise_gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let op = cx.settings.op;
+    ui.horizontal_wrapped(|ui| {
+        ui.label(format!("gains: D/M {:.3}, K/M {:.3}", op.0, op.1));
+        let pick = cx.session.allowed().and_then(|v| v.allowed.pick.as_ref());
+        if let Some(p) = pick
+            && (p.dm, p.km) != op
+            && ui
+                .button(format!("Use the pick ({})", p.rule.name()))
+                .on_hover_text(format!("D/M {:.3}, K/M {:.3}: {}", p.dm, p.km, p.why))
+                .clicked()
+        {
+            cx.settings.op = (p.dm, p.km);
+        }
+    });
+}
+
 fn generalise_export_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let session = cx.session;
     ui.horizontal_wrapped(|ui| {

@@ -24,11 +24,18 @@ fn chosen_gains(session: &Session, s: &Settings, choice: usize) -> Option<(Strin
         1 => session
             .extraction()
             .map(|x| ("extracted".into(), x.eval.dm, x.eval.km)),
+        i if i == PICKED => session
+            .allowed()
+            .and_then(|v| v.allowed.pick.as_ref())
+            .map(|p| (format!("picked ({})", p.rule.name()), p.dm, p.km)),
         i => PAPER_PRESETS
             .get(i - 2)
             .map(|p| (p.name.to_owned(), p.dm, p.km)),
     }
 }
+
+/// The gains combo's entry of the picked gains (after the presets).
+const PICKED: usize = 2 + PAPER_PRESETS.len();
 
 /// The RL section.
 pub fn rl_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
@@ -56,6 +63,7 @@ fn rl_gains_ui(ui: &mut egui::Ui, c: &mut RlChoices) {
         .into_iter()
         .map(str::to_owned)
         .chain(PAPER_PRESETS.iter().map(|p| p.name.to_owned()))
+        .chain(["picked (What the demos allow)".to_owned()])
         .collect();
     egui::ComboBox::from_label("gains")
         .selected_text(names.get(c.gains).cloned().unwrap_or_default())

@@ -1,7 +1,8 @@
-//! Table I, live: one row per gain set (extracted, the paper's, the
-//! operating point) with D/M, K/M, zeta, S, sum d, J, the mean d_mean, the
-//! largest a_peak and each demo's d_mean; copied as Markdown or CSV (the
-//! core's report renders both).
+//! Table I, live: one row per gain set (extracted, picked, the paper's,
+//! the operating point) with D/M, K/M, zeta, S, sum d, J, the skill error
+//! E, the mean d_mean, the largest a_peak, each demo's d_mean and each
+//! demo's e (method.md section 11); copied as Markdown or CSV (the core's
+//! report renders both).
 
 use dmpscope_core::TableRow;
 use eframe::egui;
@@ -33,13 +34,17 @@ pub fn table_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
                 "S",
                 "sum d [m]",
                 "J",
+                "E [m]",
                 "mean d_mean [mm]",
                 "max a_peak",
             ] {
                 ui.label(egui::RichText::new(h).strong());
             }
-            for (i, name) in names.iter().enumerate() {
-                ui.label(egui::RichText::new(format!("d {}", short(name, i))).strong());
+            for prefix in ["d", "e"] {
+                for (i, name) in names.iter().enumerate() {
+                    let title = format!("{prefix} {} [mm]", short(name, i));
+                    ui.label(egui::RichText::new(title).strong());
+                }
             }
             ui.end_row();
             for r in &report.table {
@@ -52,7 +57,7 @@ pub fn table_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
 
 fn row(ui: &mut egui::Ui, r: &TableRow) {
     let c = r.cells();
-    for cell in &c[..7] {
+    for cell in &c[..8] {
         ui.label(cell);
     }
     let mean = r.d_mean.iter().sum::<f64>() / r.d_mean.len().max(1) as f64;
@@ -61,7 +66,7 @@ fn row(ui: &mut egui::Ui, r: &TableRow) {
         "{:.2}",
         r.a_peak.iter().fold(0.0f64, |a, &b| a.max(b))
     ));
-    for d in &r.d_mean {
+    for d in r.d_mean.iter().chain(&r.e) {
         ui.label(format!("{:.3}", d * 1e3));
     }
 }
