@@ -33,6 +33,9 @@ pub struct Model {
     /// The skill run towards each demo (method.md section 11), or why the
     /// skill mode gives none.
     skill: std::result::Result<Vec<DemoKernel>, String>,
+    /// Each demo's orientation projections (method.md section 12), `None`
+    /// for a demo without orientation.
+    orientation: Vec<Option<Projections>>,
 }
 
 /// One demo laid out for the integration kernel, in scaled variables
@@ -162,6 +165,10 @@ impl Model {
             .map(|(d, p)| DemoKernel::new(d, p))
             .collect();
         let skill = skill_error::kernels(&demos, &projections, settings.skill_mode);
+        let orientation = demos
+            .iter()
+            .map(|d| d.orientation.as_ref().map(|o| o.projections(&basis)))
+            .collect();
         Ok(Self {
             demos,
             settings,
@@ -170,6 +177,7 @@ impl Model {
             similarity,
             kernels,
             skill,
+            orientation,
         })
     }
 
@@ -209,6 +217,45 @@ impl Model {
             skill: Err("the skill error is switched off".to_owned()),
             ..self.clone()
         }
+    }
+
+    /// The orientation projections of demo `i` (`None`: no orientation).
+    pub fn orientation_projections(&self, i: usize) -> Option<&Projections> {
+        self.orientation.get(i).and_then(Option::as_ref)
+    }
+
+    /// Whether any demo has an orientation.
+    pub fn has_orientation(&self) -> bool {
+        self.orientation.iter().any(Option::is_some)
+    }
+
+    /// Demo `i`'s orientation regenerated at `(dm, km)` from its own start
+    /// to its own goal (method.md section 12); `None` without orientation.
+    pub fn orientation_rollout(
+        &self,
+        i: usize,
+        dm: f64,
+        km: f64,
+    ) -> Option<crate::orientation::OrientationRollout> {
+        let prepared = self.demos.get(i)?.orientation.as_ref()?;
+        let proj = self.orientation_projections(i)?;
+        let target = crate::orientation::OrientationTarget {
+            start: prepared.q[0],
+            w0: prepared.w[0],
+            goal: prepared.goal,
+        };
+        Some(crate::orientation::rollout(proj, dm, km, target))
+    }
+
+    /// `d_rot` (radians) and `alpha_peak` of demo `i` at `(dm, km)`
+    /// (method.md section 12); `None` without orientation.
+    pub fn rotation_error(&self, i: usize, dm: f64, km: f64) -> Option<(f64, f64)> {
+        let path = self.orientation_rollout(i, dm, km)?;
+        let target = &self.demos[i].orientation.as_ref()?.q_raw;
+        Some((
+            crate::orientation::error(&path.q, target),
+            path.alpha_peak(),
+        ))
     }
 
     /// Why the model has no skill error (a frame skill whose demos' mean
@@ -335,6 +382,10 @@ impl Model {
             similarity: self.similarity.subset(indices),
             kernels: indices.iter().map(|&i| self.kernels[i].clone()).collect(),
             skill,
+            orientation: indices
+                .iter()
+                .map(|&i| self.orientation[i].clone())
+                .collect(),
         })
     }
 

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::demo::{RawDemo, median, stamp_intervals_s};
 use crate::error::{Error, Location, Result};
 use crate::geom::Vec3;
+use crate::orientation::{Grids, PreparedOrientation};
 use crate::savgol::SavGol;
 
 /// The most points a demo is resampled onto (1000 s at 1 kHz): more means
@@ -92,6 +93,12 @@ pub struct PreparedDemo {
     pub yd: Vec<Vec3>,
     /// Its second derivative with respect to unit time.
     pub ydd: Vec<Vec3>,
+    /// The orientation (method.md section 12), when the recording has one
+    /// that rotates (`None` for a stream without orientation, and for one
+    /// whose orientation is the identity throughout: a tracker that sends
+    /// no rotation).
+    #[serde(default)]
+    pub orientation: Option<PreparedOrientation>,
 }
 
 impl PreparedDemo {
@@ -233,6 +240,30 @@ pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
         cols[2][axis] = interp(&query_t, &grid_t, &vel);
         cols[3][axis] = interp(&query_t, &grid_t, &acc);
     }
+    let orientation = match &raw.orientations {
+        Some(all) => {
+            let qs: Vec<crate::rotation::Q> = raw
+                .unique_order()
+                .iter()
+                .filter_map(|&i| all.get(i))
+                .map(|q| crate::geom::xyzw(q))
+                .collect();
+            let identity = qs.iter().all(|q| *q == crate::rotation::IDENTITY);
+            if qs.len() != stamps.len() || identity {
+                None
+            } else {
+                let grids = Grids {
+                    t: &t,
+                    uniform: &grid_t,
+                    unit: &query_t,
+                    sg: &sg,
+                    total,
+                };
+                Some(PreparedOrientation::new(&qs, &grids)?)
+            }
+        }
+        None => None,
+    };
     let [c_raw, c_y, c_yd, c_ydd] = cols;
     let y_raw = zip3(c_raw);
     let goal = y_raw[y_raw.len() - 1];
@@ -248,5 +279,6 @@ pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
         y: zip3(c_y),
         yd: zip3(c_yd),
         ydd: zip3(c_ydd),
+        orientation,
     })
 }

@@ -105,6 +105,7 @@ fn dmp_demo(g: [f64; 3], v0: [f64; 3]) -> (PreparedDemo, [f64; 3]) {
         y: vecs(y),
         yd: vecs(yd),
         ydd: vecs(ydd),
+        orientation: None,
     };
     (demo, c)
 }

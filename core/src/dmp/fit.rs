@@ -46,16 +46,23 @@ pub struct Projections {
 impl Projections {
     /// Fits the three parts of one prepared demo.
     pub fn new(basis: &Basis, demo: &PreparedDemo) -> Self {
-        let n = demo.len();
-        let mut f = vec![[[0.0; 3]; 3]; n];
-        let weights = [0, 1, 2].map(|axis| {
-            let parts: [Vec<f64>; 3] = [
+        let parts = [0, 1, 2].map(|axis| {
+            [
                 demo.ydd.iter().map(|v| v[axis]).collect(),
                 demo.yd.iter().map(|v| v[axis]).collect(),
                 demo.y.iter().map(|v| v[axis] - demo.goal[axis]).collect(),
-            ];
-            parts.map(|part| fit_weights(basis, &part))
+            ]
         });
+        Self::from_parts(basis, parts)
+    }
+
+    /// Fits any forcing target that is `P0 + D P1 + K P2`: `parts[axis]`
+    /// holds `[P0, P1, P2]` on the grid (the orientation DMP's, method.md
+    /// section 12, as well as the position's).
+    pub fn from_parts(basis: &Basis, parts: [[Vec<f64>; 3]; 3]) -> Self {
+        let n = basis.grid_points();
+        let mut f = vec![[[0.0; 3]; 3]; n];
+        let weights = parts.map(|axis| axis.map(|part| fit_weights(basis, &part)));
         for axis in 0..3 {
             for j in 0..3 {
                 let fj = forcing_from_weights(basis, &weights[axis][j]);

@@ -1,0 +1,213 @@
+//! The orientation DMP (method.md section 12): the quaternion form of Ude
+//! et al. (2014), movement_primitives' CartesianDMP, in unit time with the
+//! position's phase and basis.
+//!
+//! Preparation ([`PreparedOrientation::new`]): the quaternions in time
+//! order are made sign-continuous, slerped onto the uniform grid of
+//! section 2, smoothed per component by the same Savitzky-Golay filter as
+//! the positions (value, first and second derivative), carried to the
+//! unit-time grid like the positions, the smoothed `q` renormalised; the
+//! angular velocity and acceleration are `w = 2 vec(q' * conj(q))` and
+//! `w' = 2 vec(q'' * conj(q))`. The raw target `q_raw` is slerped onto the
+//! unit-time grid.
+//!
+//! Fit: `f_o = w' + D/M w - K/M 2 log(q_g * conj(q))` is linear in the
+//! gains, so the LWR projections are the position's
+//! ([`Projections::from_parts`]). Rollout ([`rollout`]):
+//! `a_k = -D w_k + K 2 log(q_g * conj(q_k)) + f_o(x_k)`,
+//! `w_{k+1} = w_k + a_k dt`, `q_{k+1} = exp(w_{k+1} dt / 2) * q_k`.
+//! Error: `d_rot = integral_0^1 2 acos(min(1, |q_new . q_raw|)) ds`.
+
+use crate::dmp::{Basis, Projections};
+use crate::error::Result;
+use crate::prepare::interp;
+use crate::rotation::{self, Q};
+use crate::savgol::SavGol;
+use crate::similarity::trapezoid;
+
+/// A demo's orientation on the unit-time grid.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PreparedOrientation {
+    /// The raw orientation slerped onto the grid: the error's target.
+    pub q_raw: Vec<Q>,
+    /// The smoothed orientation, unit norm.
+    pub q: Vec<Q>,
+    /// Angular velocity in unit time (space frame), rad per unit time.
+    pub w: Vec<[f64; 3]>,
+    /// Angular acceleration in unit time.
+    pub wd: Vec<[f64; 3]>,
+    /// The goal orientation `q_raw(1)`.
+    pub goal: Q,
+}
+
+/// Where to sample: the recorded times, the uniform grid and the
+/// unit-time grid (as times), the filter and the duration.
+pub struct Grids<'a> {
+    /// Sorted unique sample times, seconds from the first.
+    pub t: &'a [f64],
+    /// The uniform grid of section 2, seconds.
+    pub uniform: &'a [f64],
+    /// The unit-time grid as times, seconds.
+    pub unit: &'a [f64],
+    /// The Savitzky-Golay filter of the positions.
+    pub sg: &'a SavGol,
+    /// The duration T, seconds.
+    pub total: f64,
+}
+
+/// Slerp of the samples `qs` at times `t` onto `at` (clamped at the ends).
+fn slerp_onto(at: &[f64], t: &[f64], qs: &[Q]) -> Vec<Q> {
+    let last = t.len() - 1;
+    at.iter()
+        .map(|&x| {
+            if x <= t[0] {
+                return qs[0];
+            }
+            if x >= t[last] {
+                return qs[last];
+            }
+            let j = t.partition_point(|&p| p <= x) - 1;
+            if t[j] == x {
+                return qs[j];
+            }
+            rotation::slerp(qs[j], qs[j + 1], (x - t[j]) / (t[j + 1] - t[j]))
+        })
+        .collect()
+}
+
+impl PreparedOrientation {
+    /// Prepares the quaternions `qs` (one per sorted unique sample, unit
+    /// norm) on `grids`.
+    pub fn new(qs: &[Q], grids: &Grids<'_>) -> Result<Self> {
+        let mut qs = qs.to_vec();
+        rotation::sign_continuous(&mut qs);
+        let uniform = slerp_onto(grids.uniform, grids.t, &qs);
+        let spacing = grids.total / (grids.uniform.len().max(2) - 1) as f64;
+        let (total, total2) = (grids.total, grids.total * grids.total);
+        let mut parts: [[Vec<f64>; 4]; 3] = Default::default();
+        for c in 0..4 {
+            let column: Vec<f64> = uniform.iter().map(|q| q[c]).collect();
+            let s = grids.sg.apply(&column, spacing)?;
+            let d1: Vec<f64> = s.d1.iter().map(|v| v * total).collect();
+            let d2: Vec<f64> = s.d2.iter().map(|v| v * total2).collect();
+            parts[0][c] = interp(grids.unit, grids.uniform, &s.value);
+            parts[1][c] = interp(grids.unit, grids.uniform, &d1);
+            parts[2][c] = interp(grids.unit, grids.uniform, &d2);
+        }
+        let n = grids.unit.len();
+        let at = |p: &[Vec<f64>; 4], k: usize| -> Q { std::array::from_fn(|c| p[c][k]) };
+        let q: Vec<Q> = (0..n)
+            .map(|k| rotation::normalised(at(&parts[0], k)))
+            .collect();
+        let vec2 = |d: Q, q: Q| {
+            let p = rotation::mul(d, rotation::conj(q));
+            [2.0 * p[0], 2.0 * p[1], 2.0 * p[2]]
+        };
+        let w = (0..n).map(|k| vec2(at(&parts[1], k), q[k])).collect();
+        let wd = (0..n).map(|k| vec2(at(&parts[2], k), q[k])).collect();
+        let q_raw = slerp_onto(grids.unit, grids.uniform, &uniform);
+        let goal = q_raw[n - 1];
+        Ok(Self {
+            q_raw,
+            q,
+            w,
+            wd,
+            goal,
+        })
+    }
+
+    /// The LWR projections of `f_o = w' + D w - K 2 log(q_g * conj(q))`.
+    pub fn projections(&self, basis: &Basis) -> Projections {
+        let goal = self.goal;
+        let to_goal: Vec<[f64; 3]> = self
+            .q
+            .iter()
+            .map(|&q| rotation::rotation_vector(goal, q))
+            .collect();
+        let parts = [0, 1, 2].map(|ax| {
+            [
+                self.wd.iter().map(|v| v[ax]).collect(),
+                self.w.iter().map(|v| v[ax]).collect(),
+                to_goal.iter().map(|v| -v[ax]).collect(),
+            ]
+        });
+        Projections::from_parts(basis, parts)
+    }
+}
+
+/// An orientation path on the unit-time grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OrientationRollout {
+    /// Orientations, unit quaternions `[x, y, z, w]`.
+    pub q: Vec<Q>,
+    /// Angular velocities, rad per unit time.
+    pub w: Vec<[f64; 3]>,
+    /// Angular accelerations, rad per unit time squared.
+    pub a: Vec<[f64; 3]>,
+}
+
+impl OrientationRollout {
+    /// The largest angular acceleration norm, `alpha_peak`.
+    pub fn alpha_peak(&self) -> f64 {
+        self.a
+            .iter()
+            .map(|a| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt())
+            .fold(0.0, f64::max)
+    }
+}
+
+/// Where an orientation rollout starts and ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OrientationTarget {
+    /// The start orientation.
+    pub start: Q,
+    /// The initial angular velocity, unit time.
+    pub w0: [f64; 3],
+    /// The goal orientation.
+    pub goal: Q,
+}
+
+/// Integrates the orientation DMP with the fitted forcing term of `proj`
+/// at `(dm, km)` from `target` (method.md section 12).
+pub fn rollout(
+    proj: &Projections,
+    dm: f64,
+    km: f64,
+    target: OrientationTarget,
+) -> OrientationRollout {
+    let n = proj.f.len();
+    let dt = 1.0 / (n.max(2) - 1) as f64;
+    let mut q = target.start;
+    let mut w = target.w0;
+    let mut out = OrientationRollout {
+        q: Vec::with_capacity(n),
+        w: Vec::with_capacity(n),
+        a: Vec::with_capacity(n),
+    };
+    for fk in &proj.f {
+        out.q.push(q);
+        out.w.push(w);
+        let r = rotation::rotation_vector(target.goal, q);
+        let a: [f64; 3] = std::array::from_fn(|ax| {
+            let [f0, f1, f2] = fk[ax];
+            -dm * w[ax] + km * r[ax] + (f0 + dm * f1 + km * f2)
+        });
+        out.a.push(a);
+        for ax in 0..3 {
+            w[ax] += a[ax] * dt;
+        }
+        q = rotation::normalised(rotation::mul(rotation::exp(w.map(|v| 0.5 * v * dt)), q));
+    }
+    out
+}
+
+/// `d_rot`: the angle between a path and a target, integrated over unit
+/// time (trapezoid), radians.
+pub fn error(path: &[Q], target: &[Q]) -> f64 {
+    let n = path.len().min(target.len());
+    let angles = path
+        .iter()
+        .zip(target)
+        .map(|(&a, &b)| rotation::angle(a, b));
+    trapezoid(angles, n) / (n.max(2) - 1) as f64
+}
