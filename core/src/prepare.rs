@@ -246,7 +246,7 @@ pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
                 .unique_order()
                 .iter()
                 .filter_map(|&i| all.get(i))
-                .map(|q| crate::geom::xyzw(q))
+                .map(crate::geom::xyzw)
                 .collect();
             let identity = qs.iter().all(|q| *q == crate::rotation::IDENTITY);
             if qs.len() != stamps.len() || identity {
