@@ -175,6 +175,7 @@ fn two_reaches_on_one_topic(name: &str, shift_ns: i64) -> String {
     let path = tmp(name);
     let out = std::fs::File::create(&path).expect("file");
     let topics = [TopicSamples {
+        orientations: None,
         topic: "/hand",
         frame_id: "world",
         samples: &samples,

@@ -26,6 +26,10 @@ pub struct Target {
     pub duration_s: Option<f64>,
     /// Spatial scaling mode.
     pub scaling: Scaling,
+    /// New start orientation, unit `[x, y, z, w]` (method.md section 12).
+    pub start_orientation: Option<crate::rotation::Q>,
+    /// New goal orientation, unit `[x, y, z, w]`.
+    pub goal_orientation: Option<crate::rotation::Q>,
 }
 
 /// The shortest duration a target may ask for, seconds.
@@ -64,6 +68,9 @@ pub struct Primitive {
     /// The diagonal of the bounding box of the start, the goal and the path
     /// at its own target (metres), computed once.
     pub(crate) extent: f64,
+    /// The orientation DMP (method.md section 12), for a demo that has
+    /// one; a skill has none.
+    pub orientation: Option<crate::orientation::OrientationPrimitive>,
 }
 
 /// A primitive run at a target: unit-time and real-time kinematics.
@@ -97,6 +104,10 @@ pub struct Generalised {
     /// What the user should know (a near-singular axis under per-axis
     /// scaling).
     pub warnings: Vec<String>,
+    /// The orientation path in unit time, when the primitive has one.
+    pub orientation: Option<crate::orientation::OrientationRollout>,
+    /// The goal orientation it ran to, when one was asked for.
+    pub orientation_goal: Option<crate::rotation::Q>,
 }
 
 impl Primitive {
@@ -139,6 +150,7 @@ impl Primitive {
             fdt2,
             members: Vec::new(),
             extent: 0.0,
+            orientation: crate::orientation::OrientationPrimitive::of_demo(model, i, dm, km),
         }
         .with_extent())
     }
@@ -294,6 +306,22 @@ impl Primitive {
                 self.name, self.dm, self.km
             )));
         }
+        let orientation = match &self.orientation {
+            Some(o) => Some(o.rollout(
+                self.dm,
+                self.km,
+                target.start_orientation,
+                target.goal_orientation,
+            )),
+            None if target.start_orientation.is_some() || target.goal_orientation.is_some() => {
+                return Err(Error::InvalidSetting(format!(
+                    "{}: no orientation to run to a new start or goal orientation (its \
+                     recording has none, or the skill of several demos)",
+                    self.name
+                )));
+            }
+            None => None,
+        };
         let peak_speed = v.iter().map(|v| norm(*v)).fold(0.0, f64::max);
         let a_peak = a.iter().map(|a| norm(*a)).fold(0.0, f64::max);
         let last = unit.y[n - 1];
@@ -312,6 +340,8 @@ impl Primitive {
             a_peak,
             final_error,
             warnings,
+            orientation,
+            orientation_goal: target.goal_orientation,
         })
     }
 

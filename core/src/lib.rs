@@ -43,6 +43,7 @@ pub mod notice;
 pub mod orientation;
 pub mod pipeline;
 pub mod planted;
+mod planted_orientation;
 pub mod prepare;
 pub mod presets;
 pub mod quantity;

@@ -175,7 +175,30 @@ pub fn rollout(
     km: f64,
     target: OrientationTarget,
 ) -> OrientationRollout {
-    let n = proj.f.len();
+    rollout_forcing(&forcing_at(proj, dm, km), dm, km, target)
+}
+
+/// The fitted forcing term `F0 + D F1 + K F2` on the grid.
+pub fn forcing_at(proj: &Projections, dm: f64, km: f64) -> Vec<[f64; 3]> {
+    proj.f
+        .iter()
+        .map(|fk| {
+            std::array::from_fn(|ax| {
+                let [f0, f1, f2] = fk[ax];
+                f0 + dm * f1 + km * f2
+            })
+        })
+        .collect()
+}
+
+/// Integrates the orientation DMP with a forcing term on the grid.
+pub fn rollout_forcing(
+    forcing: &[[f64; 3]],
+    dm: f64,
+    km: f64,
+    target: OrientationTarget,
+) -> OrientationRollout {
+    let n = forcing.len();
     let dt = 1.0 / (n.max(2) - 1) as f64;
     let mut q = target.start;
     let mut w = target.w0;
@@ -184,14 +207,11 @@ pub fn rollout(
         w: Vec::with_capacity(n),
         a: Vec::with_capacity(n),
     };
-    for fk in &proj.f {
+    for f in forcing {
         out.q.push(q);
         out.w.push(w);
         let r = rotation::rotation_vector(target.goal, q);
-        let a: [f64; 3] = std::array::from_fn(|ax| {
-            let [f0, f1, f2] = fk[ax];
-            -dm * w[ax] + km * r[ax] + (f0 + dm * f1 + km * f2)
-        });
+        let a: [f64; 3] = std::array::from_fn(|ax| -dm * w[ax] + km * r[ax] + f[ax]);
         out.a.push(a);
         for ax in 0..3 {
             w[ax] += a[ax] * dt;
@@ -199,6 +219,53 @@ pub fn rollout(
         q = rotation::normalised(rotation::mul(rotation::exp(w.map(|v| 0.5 * v * dt)), q));
     }
     out
+}
+
+/// A demo's orientation DMP at one gain pair, to run at a new start and
+/// goal orientation (method.md section 12: the forcing term unchanged).
+#[derive(Clone, Debug, PartialEq)]
+pub struct OrientationPrimitive {
+    /// The forcing term on the grid.
+    pub forcing: Vec<[f64; 3]>,
+    /// LWR weights per axis at the primitive's gains.
+    pub weights: [Vec<f64>; 3],
+    /// Its own start orientation (the smoothed `q(0)`).
+    pub start: Q,
+    /// Its own initial angular velocity, unit time.
+    pub w0: [f64; 3],
+    /// Its own goal orientation.
+    pub goal: Q,
+}
+
+impl OrientationPrimitive {
+    /// Demo `i`'s orientation DMP at `(dm, km)`; `None` without one.
+    pub fn of_demo(model: &crate::Model, i: usize, dm: f64, km: f64) -> Option<Self> {
+        let prepared = model.demos().get(i)?.orientation.as_ref()?;
+        let proj = model.orientation_projections(i)?;
+        Some(Self {
+            forcing: forcing_at(proj, dm, km),
+            weights: std::array::from_fn(|ax| proj.weights_at(ax, dm, km)),
+            start: prepared.q[0],
+            w0: prepared.w[0],
+            goal: prepared.goal,
+        })
+    }
+
+    /// Runs it from `start` to `goal` (its own where `None`).
+    pub fn rollout(
+        &self,
+        dm: f64,
+        km: f64,
+        start: Option<Q>,
+        goal: Option<Q>,
+    ) -> OrientationRollout {
+        let target = OrientationTarget {
+            start: start.unwrap_or(self.start),
+            w0: self.w0,
+            goal: goal.unwrap_or(self.goal),
+        };
+        rollout_forcing(&self.forcing, dm, km, target)
+    }
 }
 
 /// `d_rot`: the angle between a path and a target, integrated over unit

@@ -27,9 +27,9 @@ use crate::generalise::Mapping;
 use crate::synth::{Rng, SynthDemo};
 
 /// Substeps of the fine integration per step of the unit-time grid.
-const SUBSTEPS: usize = 10;
+pub(crate) const SUBSTEPS: usize = 10;
 /// Points of the unit-time grid the nominal forcing term is fitted on.
-const GRID: usize = crate::DEFAULT_GRID_POINTS;
+pub(crate) const GRID: usize = crate::DEFAULT_GRID_POINTS;
 /// The sampling rate, Hz.
 const RATE_HZ: f64 = 90.0;
 
@@ -68,14 +68,15 @@ fn min_jerk(u: f64) -> [f64; 3] {
 const NOMINAL: [f64; 3] = [0.25, 0.28, 0.14];
 
 /// The forcing term `f(x) = x sum psi_i w_i / sum psi_i` at any phase.
-struct Forcing {
+pub(crate) struct Forcing {
     centres: Vec<f64>,
     widths: Vec<f64>,
     weights: [Vec<f64>; 3],
 }
 
 impl Forcing {
-    fn at(&self, x: f64) -> [f64; 3] {
+    /// The forcing term at phase `x`.
+    pub(crate) fn at(&self, x: f64) -> [f64; 3] {
         let mut sum = 0.0;
         let mut dot = [0.0; 3];
         for (i, (&c, &h)) in self.centres.iter().zip(&self.widths).enumerate() {
@@ -94,6 +95,13 @@ impl Forcing {
 
 /// The forcing term fitted to the nominal reach at `(dm, km)`.
 fn nominal_forcing(dm: f64, km: f64) -> Forcing {
+    forcing_towards(dm, km, NOMINAL)
+}
+
+/// The forcing term fitted at `(dm, km)` to a minimum-jerk motion of
+/// `reach` from rest to rest (per axis; for the orientation, `reach` is
+/// the rotation vector, and `2 log(q_g * conj(q))` is `reach (1 - p)`).
+pub(crate) fn forcing_towards(dm: f64, km: f64, reach: [f64; 3]) -> Forcing {
     let settings = DmpSettings::default();
     // The paper's basis cannot fail on the default settings and grid; an
     // empty basis (no weights) would give a zero forcing term.
@@ -102,7 +110,7 @@ fn nominal_forcing(dm: f64, km: f64) -> Forcing {
         let target: Vec<f64> = (0..GRID)
             .map(|k| {
                 let [p, v, a] = min_jerk(k as f64 / (GRID - 1) as f64);
-                let g = NOMINAL[ax];
+                let g = reach[ax];
                 a * g + dm * v * g + km * (p * g - g)
             })
             .collect();
@@ -151,7 +159,7 @@ fn sample(path: &[[f64; 3]], s: f64) -> [f64; 3] {
 }
 
 /// Rotates `v` about the z axis by `angle` radians.
-fn turn(v: [f64; 3], angle: f64) -> [f64; 3] {
+pub(crate) fn turn(v: [f64; 3], angle: f64) -> [f64; 3] {
     let (s, c) = angle.sin_cos();
     [c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]]
 }
@@ -160,6 +168,9 @@ fn turn(v: [f64; 3], angle: f64) -> [f64; 3] {
 /// gains. Demo `i` starts recording at `epoch_ns + i * 20 s`.
 pub fn planted_demos(spec: &PlantedSpec, epoch_ns: i64) -> Vec<SynthDemo> {
     let mut rng = Rng::new(spec.seed);
+    // The orientation draws from its own generator: the positions are
+    // those of a run without orientation, bit for bit.
+    let mut turns = crate::planted_orientation::Turns::new(spec);
     let forcing = nominal_forcing(spec.dm, spec.km);
     let start = [0.35, -0.20, 0.95];
     (0..spec.demos)
@@ -183,6 +194,7 @@ pub fn planted_demos(spec: &PlantedSpec, epoch_ns: i64) -> Vec<SynthDemo> {
                 .and_then(|s| Mapping::between(NOMINAL.into(), goal.into(), s).ok())
                 .unwrap_or(Mapping::IDENTITY);
             let path = integrate(&forcing, &map, spec.dm, spec.km, goal);
+            let turn_path = turns.next_path();
             let n = (duration * RATE_HZ).round() as usize + 1;
             let first_ns = epoch_ns + i as i64 * 20_000_000_000;
             let samples = (0..n)
@@ -198,10 +210,18 @@ pub fn planted_demos(spec: &PlantedSpec, epoch_ns: i64) -> Vec<SynthDemo> {
                     let p = std::array::from_fn(|ax| p0[ax] + y[ax] + spec.noise_m * rng.normal());
                     (first_ns + (t * 1e9).round() as i64, p)
                 })
+                .collect::<Vec<_>>();
+            let orientations = samples
+                .iter()
+                .map(|&(stamp, _)| {
+                    let t = (stamp - first_ns) as f64 * 1e-9;
+                    crate::planted_orientation::sample(&turn_path, t / duration)
+                })
                 .collect();
             SynthDemo {
                 samples,
                 corrected: false,
+                orientations: Some(orientations),
             }
         })
         .collect()

@@ -135,6 +135,7 @@ impl Skill {
             fdt2: mean,
             members,
             extent: 0.0,
+            orientation: None,
         }
         .with_extent();
         Ok(Self {

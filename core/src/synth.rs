@@ -47,6 +47,8 @@ pub struct SynthDemo {
     pub samples: Vec<(i64, [f64; 3])>,
     /// Whether this demo hesitates and corrects near the goal.
     pub corrected: bool,
+    /// One orientation `[x, y, z, w]` per sample, when generated with one.
+    pub orientations: Option<Vec<[f64; 4]>>,
 }
 
 /// Minimum-jerk position profile on [0, 1].
@@ -144,7 +146,11 @@ pub fn reach_demos(seed: u64, count: usize, epoch_ns: i64) -> Vec<SynthDemo> {
                 samples.push((first_ns + (t * 1e9).round() as i64, noisy));
                 k += 1;
             }
-            SynthDemo { samples, corrected }
+            SynthDemo {
+                samples,
+                corrected,
+                orientations: None,
+            }
         })
         .collect()
 }

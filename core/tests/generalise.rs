@@ -138,6 +138,7 @@ fn the_skill_of_identical_demos_is_the_demo() {
             start: Some(Vec3::from([0.2, -0.1, 0.0])),
             duration_s: Some(2.0),
             scaling,
+            ..Target::default()
         };
         let a = skill.primitive.rollout(&target).expect("skill rollout");
         let b = demo.rollout(&target).expect("demo rollout");

@@ -62,6 +62,7 @@ fn generalised_rollouts_match_the_reference() {
             goal: vec3(&case["goal"]).map(Vec3::from),
             duration_s: case["duration"].as_f64(),
             scaling,
+            ..Target::default()
         };
         let idx: Vec<usize> = case["idx"]
             .as_array()

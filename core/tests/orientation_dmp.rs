@@ -115,3 +115,91 @@ fn quaternion_sign_flips_change_nothing() {
         assert_eq!(x, y, "the same d_rot and alpha_peak to the bit");
     }
 }
+
+fn planted_raw() -> Vec<RawDemo> {
+    let spec = dmpscope_core::planted::PlantedSpec {
+        dm: 10.73,
+        km: 20.71,
+        noise_m: 1e-4,
+        demos: 8,
+        seed: 42,
+        scale_forcing: None,
+    };
+    dmpscope_core::planted::planted_demos(&spec, 1_700_000_000_000_000_000)
+        .iter()
+        .enumerate()
+        .map(|(i, d)| RawDemo {
+            name: format!("planted:{i}"),
+            file: "planted".into(),
+            topic: format!("/demo_{i:02}"),
+            stamps_ns: d.samples.iter().map(|s| s.0).collect(),
+            positions: d.samples.iter().map(|s| s.1.into()).collect(),
+            orientations: d
+                .orientations
+                .as_ref()
+                .map(|qs| qs.iter().map(|q| unit(*q)).collect()),
+            time_source: TimeSource::HeaderStamp,
+        })
+        .collect()
+}
+
+#[test]
+fn planted_orientations_come_back_at_the_planted_gains() {
+    let m = model(&planted_raw());
+    let mut worst = 0.0f64;
+    for i in 0..m.demos().len() {
+        let (d_rot, _) = m.rotation_error(i, 10.73, 20.71).expect("orientation");
+        worst = worst.max(d_rot.to_degrees());
+        let path = m.orientation_rollout(i, 10.73, 20.71).expect("rollout");
+        for q in &path.q {
+            assert!((rotation::dot(*q, *q).sqrt() - 1.0).abs() < 1e-12);
+        }
+    }
+    eprintln!("planted orientation: d_rot at most {worst:.4} deg at the planted gains");
+    assert!(worst < 0.1, "{worst} deg");
+}
+
+#[test]
+fn a_new_goal_and_start_orientation_are_reached() {
+    use dmpscope_core::{Primitive, Target};
+    let m = model(&planted_raw());
+    // The gains of CartesianDMP's defaults (alpha 25, beta 6.25): the
+    // spring settles well inside unit time. At the planted 10.73 / 20.71 it
+    // settles in about 1.6 unit times, so a goal far from the demo's own is
+    // still degrees away at the end (what the robot's settling time says).
+    let p = Primitive::of_demo(&m, 0, 25.0, 156.25).expect("primitive");
+    let own = p.orientation.as_ref().expect("orientation").goal;
+    let goal = rotation::mul(rotation::exp([0.3, -0.2, 0.25]), own);
+    let start = rotation::exp([0.05, 0.1, 0.2]);
+    let out = p
+        .rollout(&Target {
+            goal_orientation: Some(goal),
+            start_orientation: Some(start),
+            ..Target::default()
+        })
+        .expect("rollout");
+    let path = out.orientation.expect("orientation path");
+    assert_eq!(path.q[0], start, "starts exactly at the new start");
+    let end = rotation::angle(*path.q.last().expect("end"), goal).to_degrees();
+    eprintln!(
+        "new goal {:.1} deg from the own: reached within {end:.4} deg",
+        rotation::angle(goal, own).to_degrees()
+    );
+    assert!(end < 0.05, "{end} deg");
+    // A goal equal to the start is fine: the forcing term still turns it.
+    let still = p
+        .rollout(&Target {
+            goal_orientation: Some(start),
+            start_orientation: Some(start),
+            ..Target::default()
+        })
+        .expect("rollout")
+        .orientation
+        .expect("path");
+    let turned = still
+        .q
+        .iter()
+        .map(|q| rotation::angle(*q, start))
+        .fold(0.0, f64::max);
+    assert!(turned > 0.01 && rotation::angle(*still.q.last().expect("end"), start) < 1e-3);
+}

@@ -71,6 +71,7 @@ fn demos() -> Vec<Vec<Sample>> {
 fn topics(demos: &[Vec<Sample>]) -> Vec<TopicSamples<'_>> {
     let names = ["/a", "/b", "/c"];
     let each = |(topic, samples)| TopicSamples {
+        orientations: None,
         topic,
         frame_id: "world",
         samples,

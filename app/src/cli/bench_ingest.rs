@@ -28,6 +28,7 @@ fn recording(messages: usize, compress: bool) -> anyhow::Result<Vec<u8>> {
         .iter()
         .zip(&samples)
         .map(|(topic, samples)| TopicSamples {
+            orientations: None,
             topic,
             frame_id: "world",
             samples,

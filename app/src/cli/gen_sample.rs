@@ -90,6 +90,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .iter()
         .zip(&topics)
         .map(|(d, t)| TopicSamples {
+            orientations: d.orientations.as_deref(),
             topic: t,
             frame_id: "world",
             samples: &d.samples,

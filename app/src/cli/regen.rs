@@ -15,7 +15,9 @@ use dmpscope_core::io::export::{
 };
 use dmpscope_core::io::ros_traj::TimedPath;
 use dmpscope_core::text::{pad_right, width};
-use dmpscope_core::{Generalised, Model, Primitive, RawDemo, Scaling, Skill, Target};
+use dmpscope_core::{
+    Generalised, Model, Primitive, RawDemo, Scaling, Skill, Target, orientation, rotation,
+};
 
 use super::inputs::{InputArgs, load_model};
 use super::output::write_text;
@@ -59,6 +61,14 @@ pub struct Args {
     /// How the forcing term follows a moved goal.
     #[arg(long, value_enum, default_value = "paper")]
     scaling: ScalingArg,
+    /// New goal orientation as a quaternion (default: the demo's own;
+    /// needs a recording with orientation). A non-unit one is normalised
+    /// with a notice.
+    #[arg(long, num_args = 4, value_names = ["QX", "QY", "QZ", "QW"], allow_negative_numbers = true)]
+    goal_orientation: Option<Vec<f64>>,
+    /// New start orientation as a quaternion (default: the demo's own).
+    #[arg(long, num_args = 4, value_names = ["QX", "QY", "QZ", "QW"], allow_negative_numbers = true)]
+    start_orientation: Option<Vec<f64>>,
     /// Write the paths here: `.csv` (every path, real-time velocity and
     /// acceleration; `-` for stdout), `.mcap` (demos and paths as
     /// `foxglove.PoseInFrame` JSON, each path also as ROS 2
@@ -87,6 +97,28 @@ fn vec3(what: &str, v: &Option<Vec<f64>>) -> anyhow::Result<Option<Vec3>> {
     }
 }
 
+/// A quaternion argument, normalised (with a notice on stderr when it was
+/// not unit); an error for a zero or non-finite one.
+fn quaternion(what: &str, v: &Option<Vec<f64>>) -> anyhow::Result<Option<[f64; 4]>> {
+    let Some(v) = v.as_deref() else {
+        return Ok(None);
+    };
+    let &[x, y, z, w] = v else {
+        anyhow::bail!("{what} takes four numbers QX QY QZ QW, got {}", v.len());
+    };
+    let q = [x, y, z, w];
+    let norm = q.iter().map(|c| c * c).sum::<f64>().sqrt();
+    if !(norm.is_finite() && norm > 1e-6) {
+        anyhow::bail!(
+            "{what} must be a rotation: a quaternion of finite, non-zero norm, got {q:?}"
+        );
+    }
+    if (norm - 1.0).abs() > 1e-9 {
+        eprintln!("note: {what} {q:?} has norm {norm:.6}; normalised to unit");
+    }
+    Ok(Some(q.map(|c| c / norm)))
+}
+
 /// Prints per path d_mean, a_peak, peak speed and final error, and writes
 /// the paths.
 pub fn run(args: Args) -> anyhow::Result<()> {
@@ -104,6 +136,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         goal: vec3("--goal", &args.goal)?,
         duration_s: args.duration,
         scaling,
+        start_orientation: quaternion("--start-orientation", &args.start_orientation)?,
+        goal_orientation: quaternion("--goal-orientation", &args.goal_orientation)?,
     };
     if let Some(d) = target.duration_s
         && !(d.is_finite() && d > 0.0)
@@ -269,7 +303,48 @@ fn summary(model: &Model, args: &Args, runs: &[Run]) -> String {
         s,
         "(a_peak in unit time as in Table I; v_max, a_max in real time over T'; end: distance of the last point from the goal)"
     );
+    orientation_summary(&mut s, model, args, runs);
     s
+}
+
+/// One line per path with an orientation: its error against the demo (at
+/// the demo's own target), its angle from the goal orientation at the
+/// end and its peak angular acceleration.
+fn orientation_summary(s: &mut String, model: &Model, args: &Args, runs: &[Run]) {
+    let goal_arg = quaternion("--goal-orientation", &args.goal_orientation)
+        .ok()
+        .flatten();
+    let own =
+        own_target(args) && args.goal_orientation.is_none() && args.start_orientation.is_none();
+    for r in runs {
+        let (Some(path), Some(prim)) = (&r.out.orientation, &r.primitive.orientation) else {
+            continue;
+        };
+        let goal = goal_arg.unwrap_or(prim.goal);
+        let end = path
+            .q
+            .last()
+            .map_or(f64::NAN, |q| rotation::angle(*q, goal).to_degrees());
+        let d_rot = match (r.demo, own) {
+            (Some(i), true) => model.demos()[i]
+                .orientation
+                .as_ref()
+                .map_or("-".to_owned(), |o| {
+                    format!(
+                        "{:.4} deg",
+                        orientation::error(&path.q, &o.q_raw).to_degrees()
+                    )
+                }),
+            _ => "-".to_owned(),
+        };
+        let _ = writeln!(
+            s,
+            "{} orientation: d_rot {d_rot}, end {end:.4} deg from the goal orientation, \
+             alpha_peak {:.3} rad (unit time)",
+            r.primitive.name,
+            path.alpha_peak()
+        );
+    }
 }
 
 /// The paths as CSV; the demo's own samples beside a path only when it

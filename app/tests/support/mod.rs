@@ -74,6 +74,7 @@ pub fn rosbag2_folder(name: &str, splits: &[(usize, usize)], short: bool) -> Pat
             .clone()
             .zip(&topics)
             .map(|(i, topic)| TopicSamples {
+                orientations: None,
                 topic,
                 frame_id: "world",
                 samples: &demos[i].samples,
@@ -81,6 +82,7 @@ pub fn rosbag2_folder(name: &str, splits: &[(usize, usize)], short: bool) -> Pat
             .collect();
         if short && f == 0 {
             samples.push(TopicSamples {
+                orientations: None,
                 topic: "/aborted",
                 frame_id: "world",
                 samples: &stub,

@@ -127,6 +127,32 @@ pub struct RolloutDoc {
     pub v: Vec<[f64; 3]>,
     /// Accelerations, m/s^2.
     pub a: Vec<[f64; 3]>,
+    /// Orientations `[x, y, z, w]`, one per step, starting exactly at
+    /// `orientation.q0_new` (with an orientation DMP).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub q: Option<Vec<[f64; 4]>>,
+}
+
+/// The orientation DMP (method.md section 12): the same phase, basis,
+/// gains and grid as the position.
+#[derive(Clone, Debug, Serialize)]
+pub struct OrientationDoc {
+    /// The transformation system.
+    pub equation: &'static str,
+    /// The integration.
+    pub integration: &'static str,
+    /// LWR weights of the orientation forcing term per axis.
+    pub weights: Weights,
+    /// The fitted start orientation `[x, y, z, w]`.
+    pub q0: [f64; 4],
+    /// The fitted goal orientation.
+    pub q_goal: [f64; 4],
+    /// The start orientation of this run.
+    pub q0_new: [f64; 4],
+    /// The goal orientation of this run.
+    pub q_goal_new: [f64; 4],
+    /// `w(0)` in unit time (rad per unit time), used unchanged.
+    pub initial_angular_velocity: [f64; 3],
 }
 
 /// One exported DMP.
@@ -183,7 +209,18 @@ pub struct DmpDocument {
     /// (metres), beside `rollout.y`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rollout_sd: Option<Vec<[f64; 3]>>,
+    /// The orientation DMP, for a demo recorded with orientation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<OrientationDoc>,
 }
+
+const ORIENTATION_EQUATION: &str = "w'(u) = -D_M w(u) + K_M 2 log(q_goal_new * conj(q(u))) + \
+     f_o(x(u)), q' = 1/2 w * q (Hamilton product, quaternions [x, y, z, w], w the angular \
+     velocity in the space frame, rad per unit time); log(v, s) = atan2(|v|, s) v / |v|; \
+     f_o as the position's forcing term with orientation.weights";
+const ORIENTATION_INTEGRATION: &str = "q_0 = q0_new, w_0 = initial_angular_velocity; a_k = \
+     -D_M w_k + K_M 2 log(q_goal_new * conj(q_k)) + f_o(x(u_k)); w_{k+1} = w_k + a_k dt; \
+     q_{k+1} = exp(w_{k+1} dt / 2) * q_k, exp(v) = (sin|v| v / |v|, cos|v|), renormalised";
 
 const TRANSFORMATION: &str = "y''(u) = -D_M y'(u) - K_M (y(u) - g_new) + Q f(x(u)), per axis, \
      u in [0, 1] unit time, y' = dy/du; D_M, K_M = gains.unit_time.d, .k";
@@ -302,11 +339,30 @@ pub fn dmp_document(
             y: crate::geom::arrays(&out.unit.y),
             v: crate::geom::arrays(&out.v),
             a: crate::geom::arrays(&out.a),
+            q: out.orientation.as_ref().map(|o| o.q.clone()),
         },
         rollout_sd: ctx.band.as_deref().map(crate::geom::arrays),
+        orientation: orientation_doc(primitive, out),
     };
     validate(&doc)?;
     Ok(doc)
+}
+
+/// The orientation part of the document, for a primitive with one.
+fn orientation_doc(primitive: &Primitive, out: &Generalised) -> Option<OrientationDoc> {
+    let o = primitive.orientation.as_ref()?;
+    let path = out.orientation.as_ref()?;
+    let [x, y, z] = o.weights.clone();
+    Some(OrientationDoc {
+        equation: ORIENTATION_EQUATION,
+        integration: ORIENTATION_INTEGRATION,
+        weights: Weights { x, y, z },
+        q0: o.start,
+        q_goal: o.goal,
+        q0_new: *path.q.first()?,
+        q_goal_new: out.orientation_goal.unwrap_or(o.goal),
+        initial_angular_velocity: o.w0,
+    })
 }
 
 /// Fails on the first non-finite number, naming its field.

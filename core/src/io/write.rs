@@ -6,7 +6,7 @@ use std::io::{Seek, Write};
 
 use mcap::records::MessageHeader;
 
-use super::ros2::{POSE_STAMPED_SCHEMA, encode_pose_stamped};
+use super::ros2::{POSE_STAMPED_SCHEMA, encode_oriented_pose_stamped};
 
 /// One topic to write: every sample is `(stamp_ns, position)`; the stamp
 /// is used as both header stamp and log time.
@@ -17,6 +17,8 @@ pub struct TopicSamples<'a> {
     pub frame_id: &'a str,
     /// Samples in the order they should be written.
     pub samples: &'a [(i64, [f64; 3])],
+    /// One orientation `[x, y, z, w]` per sample (`None`: identity).
+    pub orientations: Option<&'a [[f64; 4]]>,
 }
 
 /// A bulky topic of another schema (camera frames, say), to make large
@@ -76,7 +78,15 @@ pub fn write_pose_stamped_with_bulk<W: Write + Seek>(
                     log_time: time,
                     publish_time: time,
                 },
-                &encode_pose_stamped(stamp, topic.frame_id, position),
+                &encode_oriented_pose_stamped(
+                    stamp,
+                    topic.frame_id,
+                    position,
+                    topic
+                        .orientations
+                        .and_then(|q| q.get(sequence).copied())
+                        .unwrap_or([0.0, 0.0, 0.0, 1.0]),
+                ),
             )?;
         }
     }

@@ -46,6 +46,7 @@ pub fn mcap_of(topics: &[(&str, &[Sample])], compress: bool) -> Vec<u8> {
     let topics: Vec<TopicSamples<'_>> = topics
         .iter()
         .map(|&(topic, samples)| TopicSamples {
+            orientations: None,
             topic,
             frame_id: "world",
             samples,
