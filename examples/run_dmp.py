@@ -110,6 +110,12 @@ def load(path):
         m[q] = numbers(doc, "rollout." + q, (n, 3))
     if "rollout_sd" in doc:
         numbers(doc, "rollout_sd", (n, 3))
+    if "orientation" in doc:  # the orientation DMP (method.md section 12)
+        m["o.weights"] = np.stack([numbers(doc, "orientation.weights." + a, (b,)) for a in "xyz"])
+        for key in ("q0_new", "q_goal_new"):
+            m["o." + key] = numbers(doc, "orientation." + key, (4,))
+        m["o.w0"] = numbers(doc, "orientation.initial_angular_velocity", (3,))
+        m["q"] = numbers(doc, "rollout.q", (n, 4))
     return m
 
 
@@ -187,6 +193,45 @@ def integrate(m, q):
     return tau * k * dt, y, v / tau, a / tau ** 2
 
 
+def qmul(a, b):
+    """Hamilton product of [x, y, z, w] quaternions."""
+    ax, ay, az, aw = a
+    bx, by, bz, bw = b
+    return np.array([aw * bx + ax * bw + ay * bz - az * by,
+                     aw * by - ax * bz + ay * bw + az * bx,
+                     aw * bz + ax * by - ay * bx + az * bw,
+                     aw * bw - ax * bx - ay * by - az * bz])
+
+
+def qlog(q):
+    """log(v, w) = atan2(|v|, w) v / |v| (0 when v = 0)."""
+    n = norm(q[:3])
+    return np.zeros(3) if n == 0.0 else math.atan2(n, q[3]) / n * q[:3]
+
+
+def qexp(u):
+    """exp(u) = (sin|u| u / |u|, cos|u|)."""
+    n = norm(u)
+    return np.array([0.0, 0.0, 0.0, 1.0]) if n == 0.0 else np.append(math.sin(n) / n * u, math.cos(n))
+
+
+def integrate_orientation(m):
+    """The orientation DMP as orientation.integration spells it; (n, 4) quaternions."""
+    n, dt = m["n"], m["integration.dt"]
+    dm, km, goal = m["gains.unit_time.d"], m["gains.unit_time.k"], m["o.q_goal_new"]
+    k = np.arange(n, dtype=np.float64)
+    f = forcing(k * dt, m["alpha_x"], m["basis.centres"], m["basis.widths"], m["o.weights"])
+    q, w = m["o.q0_new"].copy(), m["o.w0"].copy()
+    out = np.empty((n, 4))
+    for i in range(n):
+        out[i] = q
+        r = 2.0 * qlog(qmul(goal, q * np.array([-1.0, -1.0, -1.0, 1.0])))
+        w = w + (-dm * w + km * r + f[i]) * dt
+        q = qmul(qexp(0.5 * w * dt), q)
+        q = q / math.sqrt(float(q @ q))
+    return out
+
+
 def compare(ours, golden):
     """max |ours - golden| / max(1, max |golden|): passes when <= TOL."""
     scale = max(1.0, float(np.max(np.abs(golden))))
@@ -199,6 +244,8 @@ def run(path):
     q_diff = float(np.max(np.abs(q - m["scaling.matrix"])))
     ours = integrate(m, q)
     errs = {name: compare(o, m[name]) for name, o in zip("tyva", ours)}
+    if "q" in m:
+        errs["q"] = compare(integrate_orientation(m), m["q"])
     problems = [f"rollout.{name} error/scale {e:.3e} > {TOL:g}"
                 for name, e in errs.items() if not e <= TOL]
     if not q_diff <= TOL * max(1.0, float(np.max(np.abs(q)))):
@@ -212,7 +259,8 @@ def run(path):
     status = "FAIL" if problems else "ok"
     print(f"{path}: name={m['name']!r} mode={m['mode']} n={m['n']} tau={m['tau']:g} "
           f"Q_diff={q_diff:.1e} err/scale t={errs['t']:.1e} y={errs['y']:.1e} "
-          f"v={errs['v']:.1e} a={errs['a']:.1e} {status}")
+          f"v={errs['v']:.1e} a={errs['a']:.1e}"
+          + (f" q={errs['q']:.1e}" if "q" in errs else "") + f" {status}")
     return not problems
 
 

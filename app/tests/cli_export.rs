@@ -104,6 +104,34 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
         "--out",
         &skill,
     ]));
+    // A demo with orientation (the planted sample) to a new goal orientation.
+    let oriented = tmp("oriented.json");
+    let planted = repo().join("assets/planted8.mcap").display().to_string();
+    ok(&[
+        "regen",
+        &planted,
+        "--dm",
+        "25",
+        "--km",
+        "156.25",
+        "--demo",
+        "1",
+        "--goal-orientation",
+        "0.3",
+        "0.1",
+        "0.2",
+        "0.9",
+        "--out",
+        &oriented,
+    ]);
+    let od = json(&oriented);
+    let q = od["rollout"]["q"].as_array().expect("rollout.q");
+    assert_eq!(q.len(), 1001);
+    assert_eq!(
+        q[0], od["orientation"]["q0_new"],
+        "starts exactly at q0_new"
+    );
+    assert!(od["gains"]["settling_time_s"].as_f64().expect("settling") > 0.0);
     let doc = json(&demo);
     assert_eq!(doc["schema"], "dmpscope.dmp");
     assert_eq!(doc["version"], 1);
@@ -132,7 +160,7 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
     let runner = repo().join("examples/run_dmp.py");
     let out = Command::new(&python)
         .arg(&runner)
-        .args([&demo, &skill])
+        .args([&demo, &skill, &oriented])
         .output()
         .expect("run the runner");
     assert!(
@@ -141,9 +169,13 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
         text(&out.stdout),
         text(&out.stderr)
     );
+    assert!(
+        text(&out.stdout).contains(" q="),
+        "the runner checks rollout.q"
+    );
     assert_eq!(
         text(&out.stdout).matches(" ok").count(),
-        2,
+        3,
         "{}",
         text(&out.stdout)
     );
@@ -171,7 +203,7 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
     let out = Command::new(&python)
         .args(["-c", check])
         .arg(&schema)
-        .args([&demo, &skill])
+        .args([&demo, &skill, &oriented])
         .output()
         .expect("validate");
     assert!(out.status.success(), "schema: {}", text(&out.stderr));
