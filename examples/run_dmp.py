@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference runner for dmpscope's DMP export (`dmpscope.dmp`, version 1).
+"""Reference runner for dmpscope's DMP export (`dmpscope.dmp`, versions 1 and 2).
 
 Written from docs/export.md alone (not from dmpscope's sources): it rebuilds
 the spatial scaling map Q, the forcing term and the semi-implicit Euler
@@ -82,8 +82,8 @@ def load(path):
     if not isinstance(doc, dict) or doc.get("schema") != "dmpscope.dmp":
         raise Invalid(f"not a dmpscope.dmp document (schema = {doc.get('schema')!r})"
                       if isinstance(doc, dict) else "not a JSON object")
-    if type(doc.get("version")) is not int or doc["version"] != 1:
-        raise Invalid(f"unsupported version {doc.get('version')!r} (this runner reads 1)")
+    if type(doc.get("version")) is not int or doc["version"] not in (1, 2):
+        raise Invalid(f"unsupported version {doc.get('version')!r} (this runner reads 1 and 2)")
     string(doc, "integration.scheme", ["semi_implicit_euler"])
     if field(doc, "basis.in_phase") is not True:
         raise Invalid("`basis.in_phase` is not true: only bases in the phase x are defined")

@@ -134,7 +134,7 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
     assert!(od["gains"]["settling_time_s"].as_f64().expect("settling") > 0.0);
     let doc = json(&demo);
     assert_eq!(doc["schema"], "dmpscope.dmp");
-    assert_eq!(doc["version"], 1);
+    assert_eq!(doc["version"], 2);
     assert_eq!(doc["source"], "demo");
     assert_eq!(doc["tau"].as_f64(), Some(2.0));
     assert_eq!(doc["gains"]["real_time"]["d"].as_f64(), Some(12.5));

@@ -296,18 +296,21 @@ impl Allowed {
             },
             None if !j_flat => {
                 let why = format!(
-                    "J is not flat (depth {} >= {FLAT_DEPTH}): the demos determine the gains; {}",
+                    "J is not flat (depth {} >= {FLAT_DEPTH}): the demos determine the gains; \
+                     {}{}",
                     depth_text(j_depth),
-                    PickRule::Optimum.rule_text()
+                    PickRule::Optimum.rule_text(),
+                    ctx.limited()
                 );
                 split(ctx.pick(PickRule::Optimum).map(|p| p.with_why(why)))
             }
             None => {
                 let why = format!(
                     "J is flat (depth {} < {FLAT_DEPTH}): the demos allow a region of gains; \
-                     within it, {}",
+                     within it, {}{}",
                     depth_text(j_depth),
-                    PickRule::Compliant.rule_text()
+                    PickRule::Compliant.rule_text(),
+                    ctx.limited()
                 );
                 match ctx.pick(PickRule::Compliant) {
                     Ok(p) => (Some(p.with_why(why)), None),
@@ -355,8 +358,8 @@ impl Allowed {
             s.push_str(&format!("the data allow {region}; {picked}\n"));
         } else {
             s.push_str(&format!(
-                "acceptable (J within {} % of J*): {region}; {picked}\n",
-                100.0 * self.acceptable.eps
+                "acceptable (J within {} of J*): {region}; {picked}\n",
+                percent(self.acceptable.eps)
             ));
         }
         s.push_str(&format!(
@@ -412,11 +415,13 @@ impl Allowed {
 /// A share as a percentage with the digits it needs (`0.02 %`, `12.5 %`).
 pub fn percent(share: f64) -> String {
     let p = 100.0 * share;
-    if p == 0.0 || p >= 1.0 {
-        format!("{p:.1} %")
+    let text = if p == 0.0 || p >= 1.0 {
+        format!("{p:.1}")
     } else {
-        format!("{p:.2} %")
-    }
+        format!("{p:.2}")
+    };
+    // `2.0 %` reads as `2 %`.
+    format!("{} %", text.strip_suffix(".0").unwrap_or(&text))
 }
 
 fn depth_text(d: Option<f64>) -> String {
@@ -454,6 +459,13 @@ struct Context<'a> {
 }
 
 impl Context<'_> {
+    /// `, among the gains with a_peak within L` when a limit is set.
+    fn limited(&self) -> String {
+        self.limit.map_or(String::new(), |l| {
+            format!(", among the gains whose a_peak stays within {l} m/s^2")
+        })
+    }
+
     fn pick(&self, rule: PickRule) -> Result<Pick, String> {
         let (dm, km) = match rule {
             PickRule::Optimum => self.optimum()?,
@@ -481,11 +493,31 @@ impl Context<'_> {
         let peak = x.a_peak.iter().copied().fold(0.0, f64::max);
         match self.limit {
             Some(limit) if peak > limit => {
-                crate::extract::constrained(self.model, self.landscape, self.extraction.k, limit)
-                    .map(|r| (r.dm, r.km))
-                    .ok_or_else(|| {
-                        format!("no gains on the grid keep every demo's a_peak within {limit}")
-                    })
+                let r = crate::extract::constrained(
+                    self.model,
+                    self.landscape,
+                    self.extraction.k,
+                    limit,
+                )
+                .ok_or_else(|| {
+                    format!("no gains on the grid keep every demo's a_peak within {limit}")
+                })?;
+                // The limit removes points first; what is left must still
+                // be acceptable.
+                let bound = (1.0 + self.acceptable.eps) * self.extraction.j;
+                if r.value > bound {
+                    return Err(format!(
+                        "the optimum under the a_peak limit {limit}, D/M {}, K/M {} (J {:.6}), is \
+                         more than {} above J* {:.6}: no gains in the acceptable region keep \
+                         a_peak within the limit",
+                        num(r.dm),
+                        num(r.km),
+                        r.value,
+                        percent(self.acceptable.eps),
+                        self.extraction.j
+                    ));
+                }
+                Ok((r.dm, r.km))
             }
             _ => Ok((x.dm, x.km)),
         }
@@ -514,8 +546,9 @@ impl Context<'_> {
             .map_or(String::new(), |l| format!(" with a_peak within {l}"));
         if points.is_empty() {
             return Err(format!(
-                "no grid point is within {} % of J*{limit}: no {} pick",
-                100.0 * self.acceptable.eps,
+                "no grid point is within {} of J*{limit}: no {} pick (a finer grid or a \
+                 larger --accept-eps finds one)",
+                percent(self.acceptable.eps),
                 rule.name()
             ));
         }

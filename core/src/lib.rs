@@ -58,6 +58,7 @@ pub mod similarity;
 pub mod skill;
 pub mod skill_error;
 pub mod synth;
+pub mod table_text;
 pub mod text;
 pub mod tf;
 pub mod units;

@@ -160,6 +160,28 @@ fn zip3(cols: [Vec<f64>; 3]) -> Vec<Vec3> {
         .collect()
 }
 
+/// The demo's orientation on `grids` (method.md section 12), `None` when
+/// it has none, or only the identity (a tracker that sends no rotation).
+fn prepare_orientation(
+    raw: &RawDemo,
+    samples: usize,
+    grids: &Grids<'_>,
+) -> Result<Option<PreparedOrientation>> {
+    let Some(all) = &raw.orientations else {
+        return Ok(None);
+    };
+    let qs: Vec<crate::rotation::Q> = raw
+        .unique_order()
+        .iter()
+        .filter_map(|&i| all.get(i))
+        .map(crate::geom::xyzw)
+        .collect();
+    if qs.len() != samples || qs.iter().all(|q| *q == crate::rotation::IDENTITY) {
+        return Ok(None);
+    }
+    PreparedOrientation::new(&qs, grids).map(Some)
+}
+
 /// Prepares one demonstration (method.md sections 2.2-2.7).
 pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
     let sg = SavGol::new(settings.sg_window, settings.sg_order)?;
@@ -240,30 +262,14 @@ pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
         cols[2][axis] = interp(&query_t, &grid_t, &vel);
         cols[3][axis] = interp(&query_t, &grid_t, &acc);
     }
-    let orientation = match &raw.orientations {
-        Some(all) => {
-            let qs: Vec<crate::rotation::Q> = raw
-                .unique_order()
-                .iter()
-                .filter_map(|&i| all.get(i))
-                .map(crate::geom::xyzw)
-                .collect();
-            let identity = qs.iter().all(|q| *q == crate::rotation::IDENTITY);
-            if qs.len() != stamps.len() || identity {
-                None
-            } else {
-                let grids = Grids {
-                    t: &t,
-                    uniform: &grid_t,
-                    unit: &query_t,
-                    sg: &sg,
-                    total,
-                };
-                Some(PreparedOrientation::new(&qs, &grids)?)
-            }
-        }
-        None => None,
+    let grids = Grids {
+        t: &t,
+        uniform: &grid_t,
+        unit: &query_t,
+        sg: &sg,
+        total,
     };
+    let orientation = prepare_orientation(raw, stamps.len(), &grids)?;
     let [c_raw, c_y, c_yd, c_ydd] = cols;
     let y_raw = zip3(c_raw);
     let goal = y_raw[y_raw.len() - 1];

@@ -45,7 +45,9 @@ impl RobotGains {
         }
     }
 
-    /// One line: `K/M 12.3 1/s^2, D/M 4.5 1/s, 0.56 Hz, zeta 0.98, settles in 1.23 s`.
+    /// One line: `K/M 4.0678 1/s^2, D/M 5.2016 1/s in real time at T = 2.488 s:
+    /// natural frequency 2.017 rad/s (0.321 Hz), zeta 1.290, 2 % settling
+    /// time 4.347 s`.
     pub fn text(&self) -> String {
         format!(
             "K/M {:.4} 1/s^2, D/M {:.4} 1/s in real time at T = {:.3} s: natural frequency \

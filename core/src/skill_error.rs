@@ -96,17 +96,22 @@ pub(crate) fn kernels(
         }
     }
     let mean_d = mean_d.map(|v| v / nf);
+    // One demo: the skill is the demo, E = d to the bit, whatever the mode.
+    let single = demos.len() == 1;
     let map = |from: Vec3, to: Vec3, who: &str| -> Result<Mapping, String> {
         match mode.scaling() {
+            _ if single => Ok(Mapping::IDENTITY),
             None => Ok(Mapping::IDENTITY),
             Some(scaling) => Mapping::between(from, to, scaling).map_err(|e| format!("{who}: {e}")),
         }
     };
-    if mode == SkillMode::Frame && crate::mapping::norm(mean_d) < MIN_FRAME_DISPLACEMENT {
+    if !single && mode == SkillMode::Frame && crate::mapping::norm(mean_d) < MIN_FRAME_DISPLACEMENT
+    {
         return Err(format!(
-            "the demos' mean displacement (goal - start) is below {MIN_FRAME_DISPLACEMENT} m \
-             (they go opposite ways), so a frame-independent skill has no direction; use \
-             --skill-mode per-axis"
+            "the demos' mean displacement (goal - start) is below {MIN_FRAME_DISPLACEMENT} m: \
+             on average they end where they start (opposite directions cancel, or every demo \
+             returns to its start), so a frame-independent skill has no direction; choose the \
+             per-axis skill mode (--skill-mode per-axis; in the app, Settings, E: skill mode)"
         ));
     }
     let to_skill: Vec<Mapping> = demos

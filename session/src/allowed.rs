@@ -35,9 +35,9 @@ impl Session {
             self.poll_allowed();
             return;
         }
-        let (Some(extraction), Some(x), Some((model, _)), Some(shown)) = (
+        let (Some(extraction), Some(Ok(x)), Some((model, _)), Some(shown)) = (
             self.extraction.key().copied(),
-            self.extraction(),
+            self.extraction.value(),
             self.model_and_version(),
             &self.shown,
         ) else {
@@ -66,8 +66,9 @@ impl Session {
             a_peak_limit: limit,
         };
         let runner = &self.runner;
-        let x = x.clone();
         self.allowed.ensure_serial(key, || {
+            // Cloned only when the key changed, not every frame.
+            let x = x.clone();
             let landscape = shown.snapshot.landscape.clone();
             let work = Once::new(move || {
                 let allowed = Allowed::new(&model, &landscape, &x, pick);

@@ -104,7 +104,8 @@ pub fn landscape_and_optimum(
 
 /// Writes the landscape JSON: the report of `dmpscope_core::report` (keys
 /// `k`, `demos`, `optimum`, `table`) plus the grid's axes `dm`, `km`, every
-/// quantity of the landscape's table by its key (`d_sum`, `s`, `a_peak`)
+/// quantity of the landscape's table by its key (`d_sum`, `s`, `a_peak`,
+/// `e_sum`)
 /// and `j`, as rows over D/M.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (_, model, land, optimum) = landscape_and_optimum(&args.input, &args.grid)?;

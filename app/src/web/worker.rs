@@ -71,7 +71,8 @@ pub fn dmpscope_worker_part(generation: f64, indices: &[u32]) -> Result<Vec<f64>
 }
 
 /// Computes a tile of `generation`: `points` are `(i_dm, i_km)` pairs
-/// flat; the answer is `[sum d, S, a_peak]` per point, flat.
+/// flat; the answer is every quantity of the table (`[sum d, S, a_peak,
+/// E]`, `core::quantity::ALL`'s order) per point, flat.
 #[wasm_bindgen]
 pub fn dmpscope_worker_tile(generation: f64, points: &[u32]) -> Result<Vec<f64>, JsValue> {
     HELD.with(|h| h.borrow().tile(generation as u64, points))

@@ -10,7 +10,7 @@ use crate::generalise::{Generalised, Primitive, Scaling};
 /// The schema's name (no URL: it is a name, not a location).
 pub const SCHEMA: &str = "dmpscope.dmp";
 /// The schema's version; a reader refuses any other.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// The equations, in symbols with their words.
 #[derive(Clone, Debug, Serialize)]

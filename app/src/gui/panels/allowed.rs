@@ -10,7 +10,7 @@ use eframe::egui::{self, Color32};
 use super::PanelCtx;
 
 /// The colour of the pick's marker and text.
-pub const PICK_COLOUR: Color32 = Color32::from_rgb(120, 255, 140);
+pub const PICK_COLOUR: Color32 = Color32::from_rgb(255, 150, 255);
 
 /// The "What the demos allow" part of the Gains section: one line with
 /// the pick (or why there is none) that opens to the rule, the region, the

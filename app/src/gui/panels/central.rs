@@ -97,6 +97,7 @@ fn maps(
             shown.values(Quantity::S)[idx],
             shown.j[idx],
             shown.values(Quantity::APeak)[idx],
+            shown.values(Quantity::ESum)[idx],
         ]
     };
     let region = session
@@ -166,8 +167,12 @@ fn markers(session: &Session) -> Vec<Marker> {
         })
         .collect();
     if let Some(x) = session.extraction() {
+        let picked = session
+            .allowed()
+            .and_then(|v| v.allowed.pick.as_ref())
+            .is_some_and(|p| (p.dm, p.km) == (x.eval.dm, x.eval.km));
         markers.push(Marker {
-            label: "optimum".into(),
+            label: if picked { "optimum = pick" } else { "optimum" }.into(),
             dm: x.eval.dm,
             km: x.eval.km,
             colour: Color32::from_rgb(255, 90, 60),
@@ -181,7 +186,10 @@ fn markers(session: &Session) -> Vec<Marker> {
             colour: Color32::from_rgb(120, 230, 255),
         });
     }
-    if let Some(p) = session.allowed().and_then(|v| v.allowed.pick.as_ref()) {
+    let optimum = session.extraction().map(|x| (x.eval.dm, x.eval.km));
+    if let Some(p) = session.allowed().and_then(|v| v.allowed.pick.as_ref())
+        && optimum != Some((p.dm, p.km))
+    {
         markers.push(Marker {
             label: format!("pick ({})", p.rule.name()),
             dm: p.dm,

@@ -212,7 +212,6 @@ fn generalise_result_ui(ui: &mut egui::Ui, session: &Session) {
     }
 }
 
-/// The button exporting the DMP at this target for a robot.
 /// The gains it runs at (the operating point's) and, when they differ, a
 /// button that takes the gains picked in What the demos allow.
 fn generalise_gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
@@ -232,6 +231,7 @@ fn generalise_gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     });
 }
 
+/// The button exporting the DMP at this target for a robot.
 fn generalise_export_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let session = cx.session;
     ui.horizontal_wrapped(|ui| {

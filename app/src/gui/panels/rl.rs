@@ -1,5 +1,5 @@
 //! The RL panel: pick the gains (operating point, extracted, a paper
-//! preset), the action mode and the decisions per episode, train a PPO
+//! preset, or the gains picked in What the demos allow), the action mode and the decisions per episode, train a PPO
 //! agent on the demo shown in the plots, or compare the extracted gains
 //! with every preset over three seeds; watch the reward curves and cancel.
 //! The learned path is drawn in the 3D view beside the demo and its LfD
