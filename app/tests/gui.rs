@@ -85,7 +85,7 @@ fn a_flat_j_gives_a_pick_and_go_to_the_pick_moves_the_operating_point() {
         (p.dm, p.km, p.why.clone())
     };
     assert!(why.contains("J is flat"), "{why}");
-    h.get_by_label_contains("What the demos allow: picked by compliant")
+    h.get_by_label_contains("What the demos allow: compliant")
         .click();
     h.run_steps(2);
     h.get_by_role_and_label(egui::accesskit::Role::Button, "Go to the pick")

@@ -131,7 +131,7 @@ impl Acceptable {
 }
 
 /// A number with about four significant digits.
-fn num(v: f64) -> String {
+pub fn num(v: f64) -> String {
     let digits = (3 - v.abs().max(1e-300).log10().floor() as i32).clamp(0, 6) as usize;
     format!("{v:.digits$}")
 }

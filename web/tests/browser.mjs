@@ -319,7 +319,9 @@ try {
 
   // Settings persist in the browser's storage: a preset chosen, the page
   // reloaded, the operating point is still there.
-  await click(270, 485); // "Hrstc4" in the side panel (below Demos, the planted sample's rest note and the Recording row)
+  // "Hrstc4" in the side panel, where the app drew it last frame.
+  const [bx, by, bw, bh] = (await state()).buttons.Hrstc4;
+  await click(bx + bw / 2, by + bh / 2);
   await until("the Hrstc4 button's effect", (s) => s.op[0] === 4 && s.op[1] === 4, 10000);
   // The reloaded page reports 5 cores: 5 workers (on this machine's 2),
   // answering in another order, and the same optimum.

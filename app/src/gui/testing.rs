@@ -151,6 +151,12 @@ impl DmpApp {
                 "dm": x.eval.dm, "km": x.eval.km, "j": x.j,
             })),
             "allowed": session.allowed().map(|v| &v.allowed),
+            "buttons": self
+                .view
+                .preset_buttons
+                .iter()
+                .map(|(name, r)| (name.to_string(), [r.min.x, r.min.y, r.width(), r.height()]))
+                .collect::<std::collections::BTreeMap<_, _>>(),
             "landscape": {"done": done, "total": total},
             "landscape_points_here": crate::session::landscape::points_computed_here(),
             "workers": session.worker_stats(),

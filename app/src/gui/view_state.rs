@@ -3,7 +3,7 @@
 //! heat maps' textures, the RL panel's choices, text being typed.
 
 use dmpscope_core::segment::SegmentSettings;
-use eframe::egui_wgpu;
+use eframe::{egui, egui_wgpu};
 
 use super::commands::Map;
 use super::heatmap::Cache;
@@ -83,6 +83,9 @@ pub struct ViewState {
     pub exclude_text: String,
     /// The segmentation thresholds, kept while demos are not segmented.
     pub segment: SegmentSettings,
+    /// Where the gain presets' buttons were drawn last frame, by name
+    /// (what the browser tests click).
+    pub preset_buttons: std::collections::BTreeMap<&'static str, egui::Rect>,
     /// The model the views were set up for.
     model_seen: Option<u64>,
 }
@@ -107,6 +110,7 @@ impl ViewState {
             timelines: Default::default(),
             exclude_text: String::new(),
             segment: SegmentSettings::default(),
+            preset_buttons: std::collections::BTreeMap::new(),
             model_seen: None,
         }
     }

@@ -18,13 +18,14 @@ pub const PICK_COLOUR: Color32 = Color32::from_rgb(255, 150, 255);
 pub fn allowed_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let summary = match cx.session.allowed().map(|v| &v.allowed) {
         Some(a) => match &a.pick {
+            // Short: the side panel is as wide as its widest line.
             Some(p) => format!(
-                "What the demos allow: picked by {}, D/M {:.3}, K/M {:.3}",
+                "What the demos allow: {}, {} / {}",
                 p.rule.name(),
-                p.dm,
-                p.km
+                dmpscope_core::allowed::num(p.dm),
+                dmpscope_core::allowed::num(p.km)
             ),
-            None => "What the demos allow: no pick (open for why)".to_owned(),
+            None => "What the demos allow: no pick (open)".to_owned(),
         },
         None => "What the demos allow".to_owned(),
     };

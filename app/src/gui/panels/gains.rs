@@ -36,7 +36,9 @@ pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     });
     ui.horizontal_wrapped(|ui| {
         for p in PAPER_PRESETS {
-            if ui.button(p.name).clicked() {
+            let button = ui.button(p.name);
+            cx.view.preset_buttons.insert(p.name, button.rect);
+            if button.clicked() {
                 s.op = (p.dm, p.km);
             }
         }
