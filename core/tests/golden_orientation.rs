@@ -18,9 +18,8 @@
 mod golden_data;
 
 use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::geom::{Vec3, quat_from_xyzw};
 use dmpscope_core::rotation::{self, Q};
-use dmpscope_core::{Model, PrepSettings, RawDemo, TimeSource, prepare};
+use dmpscope_core::{Model, PrepSettings, prepare};
 use golden_data::{fs, golden};
 use serde_json::Value;
 
@@ -39,33 +38,9 @@ fn quats(v: &Value) -> Vec<Q> {
 fn dmpscope_and_movement_primitives_regenerate_the_same_orientation_path() {
     let expected = golden("expected_orientation_peer.json");
     let demo = &expected["demo"];
-    let raw = RawDemo {
-        name: "turn".into(),
-        file: "expected_orientation_peer.json".into(),
-        topic: "turn".into(),
-        stamps_ns: demo["stamps_ns"]
-            .as_array()
-            .expect("stamps")
-            .iter()
-            .map(|v| v.as_i64().expect("int"))
-            .collect(),
-        positions: demo["positions"]
-            .as_array()
-            .expect("positions")
-            .iter()
-            .map(|p| {
-                let p = fs(p);
-                Vec3::new(p[0], p[1], p[2])
-            })
-            .collect(),
-        orientations: Some(
-            quats(&demo["orientations"])
-                .into_iter()
-                .map(|q| quat_from_xyzw(q).expect("unit"))
-                .collect(),
-        ),
-        time_source: TimeSource::HeaderStamp,
-    };
+    let mut with_name = demo.clone();
+    with_name["name"] = "turn".into();
+    let raw = golden_data::raw_demo(&with_name, "expected_orientation_peer.json");
     let prepared = prepare(&raw, &PrepSettings::default()).expect("prepare");
     let model = Model::new(vec![prepared], DmpSettings::default()).expect("model");
     let ours = model.orientation_rollout(0, 25.0, 156.25).expect("rollout");

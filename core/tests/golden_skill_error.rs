@@ -11,11 +11,8 @@ use std::sync::atomic::AtomicBool;
 
 use dmpscope_core::allowed::{Allowed, PickSettings, e_depth};
 use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::geom::Vec3;
 use dmpscope_core::landscape::{self, Axis, AxisScale, Grid};
-use dmpscope_core::{
-    Model, PrepSettings, Quantity, RawDemo, SkillMode, TimeSource, extract, prepare,
-};
+use dmpscope_core::{Model, PrepSettings, Quantity, RawDemo, SkillMode, extract, prepare};
 use golden_data::{close, f, fs, golden, raw_demos};
 use serde_json::Value;
 
@@ -28,31 +25,7 @@ fn sample_demos(set: &str) -> Vec<RawDemo> {
         .as_array()
         .expect("set")
         .iter()
-        .map(|d| {
-            let name = d["name"].as_str().expect("name").to_owned();
-            RawDemo {
-                name: name.clone(),
-                file: format!("{set}.mcap"),
-                topic: name,
-                stamps_ns: d["stamps_ns"]
-                    .as_array()
-                    .expect("stamps")
-                    .iter()
-                    .map(|v| v.as_i64().expect("int"))
-                    .collect(),
-                positions: d["positions"]
-                    .as_array()
-                    .expect("positions")
-                    .iter()
-                    .map(|p| {
-                        let p = fs(p);
-                        Vec3::new(p[0], p[1], p[2])
-                    })
-                    .collect(),
-                orientations: None,
-                time_source: TimeSource::HeaderStamp,
-            }
-        })
+        .map(|d| golden_data::raw_demo(d, &format!("{set}.mcap")))
         .collect()
 }
 

@@ -5,16 +5,17 @@
 //! goal, E in mode `frame` is flat at every gain. And the picks: each
 //! rule's point is in the acceptable region and obeys its rule.
 
+mod common;
+
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use dmpscope_core::allowed::{Allowed, PickRule, PickSettings, e_depth};
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::landscape::{self, Axis, AxisScale, Grid, Landscape};
-use dmpscope_core::planted::{PlantedSpec, planted_demos};
+use dmpscope_core::planted::PlantedSpec;
 use dmpscope_core::{
-    Model, PrepSettings, Quantity, RawDemo, Scaling, SkillMode, TimeSource, Unusable, build_model,
-    extract,
+    Model, PrepSettings, Quantity, RawDemo, Scaling, SkillMode, Unusable, build_model, extract,
 };
 
 fn planted(scale_forcing: Option<Scaling>) -> Vec<RawDemo> {
@@ -26,19 +27,7 @@ fn planted(scale_forcing: Option<Scaling>) -> Vec<RawDemo> {
         seed: 42,
         scale_forcing,
     };
-    planted_demos(&spec, 1_700_000_000_000_000_000)
-        .iter()
-        .enumerate()
-        .map(|(i, d)| RawDemo {
-            name: format!("planted:{i}"),
-            file: "planted".into(),
-            topic: format!("/demo_{i:02}"),
-            stamps_ns: d.samples.iter().map(|s| s.0).collect(),
-            positions: d.samples.iter().map(|s| s.1.into()).collect(),
-            orientations: None,
-            time_source: TimeSource::HeaderStamp,
-        })
-        .collect()
+    common::planted_raw(&spec)
 }
 
 fn grid(n: usize) -> Grid {

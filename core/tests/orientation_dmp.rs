@@ -2,6 +2,8 @@
 //! regeneration reproduces the demo's rotation, the quaternion stays unit,
 //! and quaternion sign flips between and within demos change nothing.
 
+mod common;
+
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::geom::{Vec3, quat_from_xyzw};
 use dmpscope_core::rotation::{self, Q};
@@ -125,22 +127,7 @@ fn planted_raw() -> Vec<RawDemo> {
         seed: 42,
         scale_forcing: None,
     };
-    dmpscope_core::planted::planted_demos(&spec, 1_700_000_000_000_000_000)
-        .iter()
-        .enumerate()
-        .map(|(i, d)| RawDemo {
-            name: format!("planted:{i}"),
-            file: "planted".into(),
-            topic: format!("/demo_{i:02}"),
-            stamps_ns: d.samples.iter().map(|s| s.0).collect(),
-            positions: d.samples.iter().map(|s| s.1.into()).collect(),
-            orientations: d
-                .orientations
-                .as_ref()
-                .map(|qs| qs.iter().map(|q| unit(*q)).collect()),
-            time_source: TimeSource::HeaderStamp,
-        })
-        .collect()
+    common::planted_raw(&spec)
 }
 
 #[test]

@@ -11,26 +11,8 @@ use std::sync::Arc;
 use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::landscape::{FillOrder, Grid, LandscapeJob};
-use dmpscope_core::planted::{PlantedSpec, planted_demos};
-use dmpscope_core::{
-    Extraction, Model, PrepSettings, RawDemo, TimeSource, Unusable, build_model, extract,
-};
-
-fn raw(demos: &[dmpscope_core::synth::SynthDemo]) -> Vec<RawDemo> {
-    demos
-        .iter()
-        .enumerate()
-        .map(|(i, d)| RawDemo {
-            name: format!("planted:{i}"),
-            file: "planted".into(),
-            topic: format!("/demo_{i:02}"),
-            stamps_ns: d.samples.iter().map(|s| s.0).collect(),
-            positions: d.samples.iter().map(|s| s.1.into()).collect(),
-            orientations: None,
-            time_source: TimeSource::HeaderStamp,
-        })
-        .collect()
-}
+use dmpscope_core::planted::PlantedSpec;
+use dmpscope_core::{Extraction, Model, PrepSettings, RawDemo, Unusable, build_model, extract};
 
 /// The model, its extraction and the cheap diagnostics (no resampling).
 fn diagnose(
@@ -76,7 +58,7 @@ fn planted(dm: f64, km: f64, noise_m: f64) -> Vec<RawDemo> {
         demos: 8,
         seed: 42,
     };
-    raw(&planted_demos(&spec, 1_700_000_000_000_000_000))
+    common::planted_raw(&spec)
 }
 
 #[test]

@@ -219,3 +219,25 @@ pub fn sample_demos() -> Vec<RawDemo> {
     .expect("the bundled sample loads")
     .demos
 }
+
+/// Planted demos (`dmpscope_core::planted`) as raw demos named
+/// `planted:i` on topics `/demo_ii`, orientations included.
+pub fn planted_raw(spec: &dmpscope_core::planted::PlantedSpec) -> Vec<RawDemo> {
+    dmpscope_core::planted::planted_demos(spec, EPOCH)
+        .iter()
+        .enumerate()
+        .map(|(i, d)| RawDemo {
+            name: format!("planted:{i}"),
+            file: "planted".into(),
+            topic: format!("/demo_{i:02}"),
+            stamps_ns: d.samples.iter().map(|s| s.0).collect(),
+            positions: d.samples.iter().map(|s| s.1.into()).collect(),
+            orientations: d.orientations.as_ref().map(|qs| {
+                qs.iter()
+                    .map(|q| dmpscope_core::geom::quat_from_xyzw(*q).expect("a unit quaternion"))
+                    .collect()
+            }),
+            time_source: TimeSource::HeaderStamp,
+        })
+        .collect()
+}

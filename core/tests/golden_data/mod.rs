@@ -37,6 +37,42 @@ pub fn close(actual: f64, expected: f64, rel: f64, what: &str) {
     );
 }
 
+/// One demo of a reference file: `name`, integer `stamps_ns`,
+/// `positions` and, when present, `orientations` (`[x, y, z, w]`).
+pub fn raw_demo(d: &Value, file: &str) -> RawDemo {
+    let name = d["name"].as_str().unwrap_or("demo").to_owned();
+    RawDemo {
+        name: name.clone(),
+        file: file.into(),
+        topic: name,
+        stamps_ns: d["stamps_ns"]
+            .as_array()
+            .expect("stamps")
+            .iter()
+            .map(|v| v.as_i64().expect("int stamp"))
+            .collect(),
+        positions: d["positions"]
+            .as_array()
+            .expect("positions")
+            .iter()
+            .map(|p| {
+                let p = fs(p);
+                Vec3::new(p[0], p[1], p[2])
+            })
+            .collect(),
+        orientations: d["orientations"].as_array().map(|qs| {
+            qs.iter()
+                .map(|q| {
+                    let q = fs(q);
+                    dmpscope_core::geom::quat_from_xyzw([q[0], q[1], q[2], q[3]])
+                        .expect("a unit quaternion")
+                })
+                .collect()
+        }),
+        time_source: TimeSource::HeaderStamp,
+    }
+}
+
 /// The reference's demos as decoded.
 pub fn raw_demos() -> Vec<RawDemo> {
     let input = golden("input.json");
@@ -44,31 +80,7 @@ pub fn raw_demos() -> Vec<RawDemo> {
         .as_array()
         .expect("demos")
         .iter()
-        .map(|d| {
-            let name = d["name"].as_str().expect("name").to_owned();
-            RawDemo {
-                name: name.clone(),
-                file: "input.json".into(),
-                topic: name,
-                stamps_ns: d["stamps_ns"]
-                    .as_array()
-                    .expect("stamps")
-                    .iter()
-                    .map(|v| v.as_i64().expect("int stamp"))
-                    .collect(),
-                positions: d["positions"]
-                    .as_array()
-                    .expect("positions")
-                    .iter()
-                    .map(|p| {
-                        let p = fs(p);
-                        Vec3::new(p[0], p[1], p[2])
-                    })
-                    .collect(),
-                orientations: None,
-                time_source: TimeSource::HeaderStamp,
-            }
-        })
+        .map(|d| raw_demo(d, "input.json"))
         .collect()
 }
 
