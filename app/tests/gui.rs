@@ -348,8 +348,12 @@ fn open_without_a_system_dialog_picks_files_in_the_apps_own_browser() {
 fn the_rl_panel_trains_and_shows_the_learned_path() {
     let mut h = harness();
     h.state_mut().view.rl.steps = 800;
-    // Fold the diagnostics away so the RL section fits the side panel.
+    // Fold the diagnostics away and clear the messages so the RL section
+    // fits the side panel.
     h.get_by_label("Diagnostics").click();
+    h.run_steps(2);
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "Clear messages")
+        .click();
     h.run_steps(2);
     h.get_by_label("RL with DMP").click();
     h.run_steps(2);

@@ -47,9 +47,13 @@ pub fn build_model<'a>(
     let mut used = Vec::new();
     let mut notices = Vec::new();
     let mut reasons = Vec::new();
+    let mut no_rotation = Vec::new();
     for (i, raw) in demos.into_iter().enumerate() {
         match prepare(raw, prep) {
             Ok(p) => {
+                if raw.orientations.is_some() && p.orientation.is_none() {
+                    no_rotation.push(p.name.clone());
+                }
                 prepared.push(p);
                 used.push(i);
             }
@@ -65,6 +69,17 @@ pub fn build_model<'a>(
         return Err(Error::NoUsableDemo { reasons });
     }
     notices.extend(prepared.iter().filter_map(|p| short_window(p, prep)));
+    if let Some(first) = no_rotation.first() {
+        let which = match no_rotation.len() {
+            1 => first.clone(),
+            n => format!("{n} demos ({first}, ...)"),
+        };
+        notices.push(Notice::info(format!(
+            "{which}: the orientation is the identity throughout while the position moves (a \
+             tracker that sends no rotation): no orientation DMP for them (docs/method.md \
+             section 12)"
+        )));
+    }
     if prepared.len() == 1 {
         notices.push(Notice::info(
             "only one demonstration: S needs two or more and is 0 here",

@@ -36,9 +36,15 @@ fn unusable_demos_are_skipped_with_a_warning_or_stop_the_build() {
     let built = build_model(&demos, &prep, Default::default(), Unusable::Skip).expect("skip");
     assert_eq!(built.model.demos().len(), 10);
     assert_eq!(built.used, [0, 1, 3, 4, 5, 6, 7, 8, 9, 10]);
-    assert_eq!(built.notices.len(), 1);
+    // The short demo's warning, and one note for the ten reaches recorded
+    // with the identity orientation throughout.
+    assert_eq!(built.notices.len(), 2, "{:?}", built.notices);
     assert_eq!(built.notices[0].level, Level::Warning);
     assert!(built.notices[0].text.contains("short.mcap:/short"));
+    assert_eq!(built.notices[1].level, Level::Info);
+    assert!(
+        built.notices[1].text.contains("10 demos") && built.notices[1].text.contains("identity")
+    );
     let err = build_model(&demos, &prep, Default::default(), Unusable::Fail).expect_err("fail");
     assert!(matches!(err, Error::TooFewSamples { .. }), "{err}");
     let none = build_model(

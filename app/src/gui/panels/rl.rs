@@ -46,7 +46,10 @@ pub fn rl_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let running = run.is_some_and(|(_, p)| !p.done);
     rl_buttons_ui(ui, cx, running);
     let Some((request, p)) = run else {
-        ui.weak("Trains on the demo shown in the plots.");
+        ui.weak(
+            "Trains on the demo shown in the plots: its positions (an orientation, where \
+             recorded, is not part of RL).",
+        );
         return;
     };
     let Some(current) = request.runs.get(p.run) else {
