@@ -431,8 +431,8 @@ impl Report {
                 .map_or_else(|| "undefined".to_owned(), |v| format!("{v:.4}"));
             let _ = writeln!(
                 s,
-                "the data do not determine the gains: J is flat (depth {depth} < {}); its least \
-                 value is at",
+                "J is flat (depth {depth} < {}): J alone does not determine the gains; its \
+                 least value is at",
                 crate::diagnostics::FLAT_DEPTH
             );
         }

@@ -9,6 +9,8 @@
 
 use std::collections::BTreeMap;
 
+use crate::rotation::{conj, mul};
+
 /// A rotation as a unit quaternion `[x, y, z, w]`.
 pub type Quat = [f64; 4];
 
@@ -109,8 +111,8 @@ impl TfBuffer {
             ));
         }
         let d = [origin[0] - t[0], origin[1] - t[1], origin[2] - t[2]];
-        let rotation = multiply(conjugate(q), q_frame);
-        Ok((rotate(conjugate(q), d), rotation, held_a || held_b))
+        let rotation = mul(conj(q), q_frame);
+        Ok((rotate(conj(q), d), rotation, held_a || held_b))
     }
 
     /// `frame`'s transform to the root of its tree.
@@ -128,7 +130,7 @@ impl TfBuffer {
             };
             let (te, qe, h) = edge.at(stamp_ns);
             held |= h;
-            q = multiply(qe, q);
+            q = mul(qe, q);
             let r = rotate(qe, t);
             t = [r[0] + te[0], r[1] + te[1], r[2] + te[2]];
             current.clone_from(&edge.parent);
@@ -172,25 +174,9 @@ fn normalised(q: Quat) -> Quat {
     }
 }
 
-fn conjugate(q: Quat) -> Quat {
-    [-q[0], -q[1], -q[2], q[3]]
-}
-
-/// `a * b` (apply `b`, then `a`).
-fn multiply(a: Quat, b: Quat) -> Quat {
-    let [ax, ay, az, aw] = a;
-    let [bx, by, bz, bw] = b;
-    [
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
-        aw * bw - ax * bx - ay * by - az * bz,
-    ]
-}
-
 /// Rotates `v` by the unit quaternion `q`.
 pub fn rotate(q: Quat, v: [f64; 3]) -> [f64; 3] {
-    let p = multiply(multiply(q, [v[0], v[1], v[2], 0.0]), conjugate(q));
+    let p = mul(mul(q, [v[0], v[1], v[2], 0.0]), conj(q));
     [p[0], p[1], p[2]]
 }
 

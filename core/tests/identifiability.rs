@@ -83,32 +83,53 @@ fn absolute_forcing_e_none_finds_the_planted_gains_and_e_frame_is_flat() {
 }
 
 #[test]
-fn forcing_that_turns_with_the_goal_leaves_e_frame_small_at_every_gain() {
+fn forcing_that_turns_with_the_goal_leaves_e_frame_at_the_dmps_own_error() {
     // Demos whose forcing term turns and scales with the goal are exact
-    // linear images of one motion, so each demo's fitted forcing term is
-    // its map of one term at every gain. E (frame) is then small
-    // everywhere, but not exactly flat: the mean of the members' maps into
-    // the skill's frame is not itself a rotation when the goals do not lie
-    // in one plane through the start (the smallest rotations d_i -> d_bar
-    // and d_nom -> d_i compose with a twist about d_bar that differs per
-    // demo), and that residual grows where the spring is soft or
-    // underdamped. Measured (12 x 12): 1.6 - 16.5 mm over 8 demos, against
-    // 60 - 1200 mm for E (none). docs/method.md section 11 says so.
+    // frame maps of one motion, so each demo's fitted forcing term is its
+    // map of one term at every gain: the one skill reproduces every demo
+    // about as well as the demo's own DMP does: E (frame) = sum d up to
+    // the preprocessing's differences between demos. E's depth is not
+    // small (0.34 on a 12 x 12 grid): sum d, the DMP's own reproduction
+    // error, varies with the gains (1.4 - 16.6 mm). That E - sum d varies
+    // much less than E does is what says the demos carry nothing beyond
+    // the skill's map (docs/method.md section 11). Measured: E - sum d in
+    // -0.15 .. +0.32 mm while E spans 14.9 mm.
     let raw = planted(Some(Scaling::Frame));
-    let (_, frame) = landscape_of(&raw, SkillMode::Frame, 12);
+    let (model, frame) = landscape_of(&raw, SkillMode::Frame, 12);
     let (_, none) = landscape_of(&raw, SkillMode::None, 12);
     let (e_frame, e_none) = (frame.values(Quantity::ESum), none.values(Quantity::ESum));
-    let hi = e_frame.iter().fold(0.0f64, |h, &v| h.max(v));
+    let d_sum = frame.values(Quantity::DSum);
+    let range = |v: &mut dyn Iterator<Item = f64>| {
+        v.fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], x| {
+            [lo.min(x), hi.max(x)]
+        })
+    };
+    let excess = range(&mut e_frame.iter().zip(d_sum).map(|(e, d)| e - d));
+    let e_range = range(&mut e_frame.iter().copied());
     let lo_none = e_none.iter().fold(f64::INFINITY, |l, &v| l.min(v));
     eprintln!(
-        "frame-scaled demos: E (frame) at most {hi:.5} m (depth {:.3}), E (none) at least \
-         {lo_none:.5} m",
-        e_depth(&frame).unwrap_or(f64::NAN)
+        "frame-scaled demos: E (frame) {:.5} - {:.5} m, E - sum d {:.5} - {:.5} m, E (none) at \
+         least {lo_none:.5} m",
+        e_range[0], e_range[1], excess[0], excess[1]
     );
-    assert!(hi < 0.025, "E (frame) stays below 3 mm per demo: {hi}");
+    assert!(
+        excess[1] - excess[0] < 0.1 * (e_range[1] - e_range[0]),
+        "E (frame) follows sum d: E - sum d {excess:?}, E {e_range:?}"
+    );
     for (f, n) in e_frame.iter().zip(e_none) {
         assert!(*f < n / 3.0, "E (frame) {f} well below E (none) {n}");
     }
+    // The verdict says so in words.
+    let x = extract(&model, &frame, 1.0).expect("extraction");
+    let a = Allowed::new(&model, &frame, &x, PickSettings::default());
+    let e_excess = a.e_excess.expect("an excess");
+    assert_eq!(e_excess, excess);
+    let text = a.identifiability_text();
+    assert!(text.contains("as well as its own DMP"), "{text}");
+    assert!(
+        !a.e_flat,
+        "E's depth as the method defines it is not small here"
+    );
 }
 
 #[test]
@@ -176,7 +197,9 @@ fn every_pick_is_in_the_region_and_obeys_its_rule() {
         },
     );
     assert!(a.pick.is_none());
-    assert!(a.pick_failure.expect("said").contains("a_peak within"));
+    let said = a.pick_failure.expect("said");
+    assert!(said.contains("a_peak within"), "{said}");
+    assert!(said.contains("the nearest is D/M"), "{said}");
 }
 
 #[test]

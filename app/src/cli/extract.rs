@@ -89,7 +89,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         bar.finish_and_clear();
         if job.diagnostics().flat {
             eprintln!(
-                "warning: the optimum is flat (depth below {}): the data do not determine the gains",
+                "note: J is flat (depth below {}): J alone does not determine the gains; the \
+                 output says what the data allow and which gains are picked in it",
                 dmpscope_core::diagnostics::FLAT_DEPTH
             );
         }
@@ -129,14 +130,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(());
     }
+    // A flat J leads with what the data allow and the pick (never a dead
+    // end); a determined one with its optimum.
+    let flat = report.allowed.as_ref().is_some_and(|a| a.j_flat);
+    if flat && let Some(a) = &report.allowed {
+        print!("{}", a.text());
+        println!();
+    }
     print!("{}", report.optimum_text());
     if let Some(c) = &report.constrained {
         print!("{}", c.text(Some(optimum.j)));
     }
     if let Some(a) = &report.allowed {
         println!("for the robot: {}", a.optimum_robot.text());
-        println!();
-        print!("{}", a.text());
+        if !flat {
+            println!();
+            print!("{}", a.text());
+        }
     }
     println!();
     let diag = report.diagnostics_text();

@@ -56,9 +56,10 @@ pub struct ViewState {
     pub t: f64,
     /// The 3D view's camera and toggles.
     pub view3d: View3d,
-    /// The heat maps' textures: J, sum d, the second small map.
-    pub maps: [Cache; 3],
-    /// The second small map: S or a_peak.
+    /// The heat maps' textures: J, sum d, S, E, the chosen small map.
+    pub maps: [Cache; 5],
+    /// The chosen small map (S by default; two by two, a quantity other
+    /// than sum d, S and E).
     pub second_map: Map,
     /// What the right panel shows.
     pub right: RightTab,

@@ -1,4 +1,6 @@
-//! The middle of the window: the J map with the sum d and S maps beside it
+//! The middle of the window: the J map with the sum d, S, E and one more
+//! quantity's maps beside it (two by two where wide enough, else sum d
+//! above a chosen one)
 //! (or, while there is no landscape, what the session is doing and what to
 //! do), and the 3D view below.
 
@@ -12,6 +14,9 @@ use super::super::view_state::ViewState;
 use super::super::view3d::{GenOverlay, Handle};
 use super::PanelCtx;
 use crate::session::{Command as SessionCommand, Session, Settings, Shown, Status};
+
+/// The least side of the small maps laid out two by two (else stacked).
+const MIN_QUAD_SIDE: f32 = 110.0;
 
 /// The central panel.
 pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
@@ -108,7 +113,7 @@ fn maps(
     let limit = s.a_peak_limit;
     let mut op = s.op;
     let second = view.second_map;
-    let [c_j, c_d, c_s] = &mut view.maps;
+    let [c_j, c_d, c_s, c_e, c_x] = &mut view.maps;
     let mut map = |ui: &mut egui::Ui, cache, which: Map, side: f32| {
         let on_j = which == Map::J;
         let title = match (which, limit) {
@@ -118,7 +123,15 @@ fn maps(
         let input = MapInput {
             title: &title,
             values: which.values(shown),
-            key: (shown.version, if on_j { shown.k.to_bits() } else { 0 }),
+            // J's texture follows k; a quantity's is its own (the sign bit
+            // keeps the two apart: k is never negative).
+            key: (
+                shown.version,
+                match which {
+                    Map::J => shown.k.to_bits(),
+                    Map::Quantity(q) => (1 << 63) | q.index() as u64,
+                },
+            ),
             grid,
             log_colour,
             readout: &readout,
@@ -131,27 +144,60 @@ fn maps(
         };
         heatmap::show(ui, cache, &input, &markers, &mut op, side);
     };
-    // J on the left, sum d and S (or a_peak) stacked on the right, within
-    // `height`.
+    // J on the left; on the right, where the window is wide enough, two by
+    // two: sum d and S, then E and the chosen quantity (a_peak by default);
+    // else sum d above the chosen quantity (S by default, or E, a_peak),
+    // within `height`.
     let width = ui.available_width();
     let big = heatmap::side_for(egui::vec2(width * 0.5, height));
-    let small = heatmap::side_for(egui::vec2(width * 0.5, height * 0.5 - 12.0));
-    let mut chosen = second;
+    let quad = heatmap::side_for(egui::vec2(width * 0.25 - 6.0, height * 0.5 - 12.0));
+    let fixed: &[Quantity] = if quad >= MIN_QUAD_SIDE {
+        &[Quantity::DSum, Quantity::S, Quantity::ESum]
+    } else {
+        &[Quantity::DSum]
+    };
+    let others: Vec<Quantity> = quantity::ALL
+        .into_iter()
+        .filter(|q| !fixed.contains(q))
+        .collect();
+    let mut chosen = match second {
+        Map::Quantity(q) if others.contains(&q) => second,
+        _ => others.first().map_or(second, |&q| Map::Quantity(q)),
+    };
     ui.horizontal_top(|ui| {
         ui.vertical(|ui| map(ui, c_j, Map::J, big));
         ui.vertical(|ui| {
-            map(ui, c_d, Map::Quantity(Quantity::DSum), small);
-            ui.horizontal(|ui| {
-                // Any other quantity of the table in the second small map.
-                for q in quantity::ALL.into_iter().filter(|&q| q != Quantity::DSum) {
-                    ui.selectable_value(&mut chosen, Map::Quantity(q), q.about().label);
-                }
-            });
-            map(ui, c_s, chosen, small);
+            if quad >= MIN_QUAD_SIDE {
+                ui.horizontal_top(|ui| {
+                    ui.vertical(|ui| map(ui, c_d, Map::Quantity(Quantity::DSum), quad));
+                    ui.vertical(|ui| map(ui, c_s, Map::Quantity(Quantity::S), quad));
+                });
+                ui.horizontal_top(|ui| {
+                    ui.vertical(|ui| map(ui, c_e, Map::Quantity(Quantity::ESum), quad));
+                    ui.vertical(|ui| {
+                        choose(ui, &others, &mut chosen);
+                        map(ui, c_x, chosen, quad);
+                    });
+                });
+            } else {
+                let small = heatmap::side_for(egui::vec2(width * 0.5, height * 0.5 - 12.0));
+                map(ui, c_d, Map::Quantity(Quantity::DSum), small);
+                choose(ui, &others, &mut chosen);
+                map(ui, c_s, chosen, small);
+            }
         });
     });
     view.second_map = chosen;
     s.op = op;
+}
+
+/// Buttons that choose which of `others` a small map shows.
+fn choose(ui: &mut egui::Ui, others: &[Quantity], chosen: &mut Map) {
+    ui.horizontal(|ui| {
+        for &q in others {
+            ui.selectable_value(chosen, Map::Quantity(q), q.about().label);
+        }
+    });
 }
 
 /// The paper's gains, the optimum, the S minimum and the constrained

@@ -69,9 +69,12 @@ pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let flat = session.diagnostics().map(|d| d.diagnostics.flat);
     if flat == Some(true) {
         // No number is presented as extracted when J is flat.
+        let allow = session.allowed().map_or(String::new(), |v| {
+            format!(": {}", v.allowed.acceptable.text())
+        });
         ui.colored_label(
             Color32::from_rgb(240, 180, 80),
-            "The data do not determine the gains: J is flat (see Diagnostics).",
+            format!("J is flat (see Diagnostics), so the data allow a region{allow}; the pick below is in it."),
         );
         ui.weak(format!(
             "J is least at (M:D:K) = 1 : {:.3} : {:.3}, J {:.4}, barely below the box's boundary",

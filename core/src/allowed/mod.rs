@@ -13,6 +13,9 @@ use crate::quantity::Quantity;
 use crate::robot::RobotGains;
 use crate::skill_error::SkillMode;
 
+mod pick;
+use pick::Context;
+
 /// The default eps of the acceptable region (the flatness threshold).
 pub const DEFAULT_EPS: f64 = 0.02;
 /// The damping ratios a `compliant` pick accepts.
@@ -117,7 +120,7 @@ impl Acceptable {
     pub fn text(&self) -> String {
         match (self.dm, self.km, self.zeta) {
             (Some(d), Some(k), Some(z)) => format!(
-                "D/M {} - {}, K/M {} - {} (zeta {:.2} - {:.2})",
+                "D/M {}-{}, K/M {}-{} (zeta {:.2}-{:.2})",
                 num(d[0]),
                 num(d[1]),
                 num(k[0]),
@@ -180,6 +183,14 @@ pub struct Allowed {
     /// The least and greatest E over the grid, metres (`None` without a
     /// skill error).
     pub e_range: Option<[f64; 2]>,
+    /// The least and greatest `E - sum d` over the grid, metres: how much
+    /// worse the one skill reproduces the demos than their own DMPs do
+    /// (`None` without a skill error). When it varies much less than E
+    /// does, E's variation over the gains is the DMP's own reproduction
+    /// error and the demos differ only by the skill's map, even where E's
+    /// depth is not small (an alternative to E's depth, docs/method.md
+    /// section 11).
+    pub e_excess: Option<[f64; 2]>,
     /// What E can and cannot say here (one demo; a refused frame skill).
     pub e_note: Option<String>,
     /// The acceptable region.
@@ -276,6 +287,7 @@ impl Allowed {
                     [lo.min(v), hi.max(v)]
                 })
         });
+        let e_excess = refusal.is_none().then(|| excess(landscape)).flatten();
         let acceptable = Acceptable::new(landscape, k, extraction.j, settings.eps);
         let duration = mean_duration(model);
         let ctx = Context {
@@ -332,6 +344,7 @@ impl Allowed {
             e_depth,
             e_flat,
             e_range,
+            e_excess,
             e_note,
             acceptable,
             pick,
@@ -401,6 +414,21 @@ impl Allowed {
                 self.skill_mode.name(),
                 self.skill_mode.assumes()
             )
+        } else if let (Some([lo, hi]), Some([e_lo, e_hi])) = (self.e_excess, self.e_range)
+            && hi - lo < EXCESS_SMALL * (e_hi - e_lo)
+        {
+            format!(
+                "  identifiability ({} skill: {}): E's depth {depth}, but E - sum d stays within \
+                 {} to {} m while E spans {} m: one skill reproduces each demo about as well as \
+                 its own DMP does at every gain, so the demos differ only by the skill's map and \
+                 E's variation is the DMP's own reproduction error, not information about the \
+                 gains\n",
+                self.skill_mode.name(),
+                self.skill_mode.assumes(),
+                num(lo),
+                num(hi),
+                num(e_hi - e_lo)
+            )
         } else {
             format!(
                 "  identifiability ({} skill: {}): E's depth {depth}: the demos' differences are \
@@ -411,6 +439,26 @@ impl Allowed {
         }
     }
 }
+
+/// The least and greatest `E - sum d` over the grid's points where both
+/// are finite.
+fn excess(landscape: &Landscape) -> Option<[f64; 2]> {
+    let e = landscape.values(Quantity::ESum);
+    let d = landscape.values(Quantity::DSum);
+    let range = e
+        .iter()
+        .zip(d)
+        .map(|(e, d)| e - d)
+        .filter(|v| v.is_finite())
+        .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], v| {
+            [lo.min(v), hi.max(v)]
+        });
+    range[0].is_finite().then_some(range)
+}
+
+/// When `E - sum d` varies by less than this share of E's own variation
+/// over the grid, E's variation is the DMP's own reproduction error.
+pub const EXCESS_SMALL: f64 = 0.1;
 
 /// A share as a percentage with the digits it needs (`0.02 %`, `12.5 %`).
 pub fn percent(share: f64) -> String {
@@ -439,163 +487,4 @@ fn split(r: Result<Pick, String>) -> (Option<Pick>, Option<String>) {
 pub fn mean_duration(model: &Model) -> f64 {
     let demos = model.demos();
     demos.iter().map(|d| d.duration_s).sum::<f64>() / demos.len().max(1) as f64
-}
-
-impl Pick {
-    fn with_why(mut self, why: String) -> Self {
-        self.why = why;
-        self
-    }
-}
-
-/// What a pick looks at.
-struct Context<'a> {
-    model: &'a Model,
-    landscape: &'a Landscape,
-    extraction: &'a Extraction,
-    acceptable: &'a Acceptable,
-    limit: Option<f64>,
-    duration: f64,
-}
-
-impl Context<'_> {
-    /// `, among the gains with a_peak within L` when a limit is set.
-    fn limited(&self) -> String {
-        self.limit.map_or(String::new(), |l| {
-            format!(", among the gains whose a_peak stays within {l} m/s^2")
-        })
-    }
-
-    fn pick(&self, rule: PickRule) -> Result<Pick, String> {
-        let (dm, km) = match rule {
-            PickRule::Optimum => self.optimum()?,
-            _ => self.grid_pick(rule)?,
-        };
-        let e = self.model.evaluate(dm, km);
-        Ok(Pick {
-            rule,
-            dm,
-            km,
-            zeta: e.zeta,
-            j: e.j(self.extraction.k),
-            s: e.s,
-            d_sum: e.d_sum,
-            e_sum: e.e_sum.is_finite().then_some(e.e_sum),
-            a_peak_max: e.a_peak.iter().copied().fold(0.0, f64::max),
-            why: String::new(),
-            robot: RobotGains::new(dm, km, self.duration),
-        })
-    }
-
-    /// The refined optimum, or under a limit the constrained one.
-    fn optimum(&self) -> Result<(f64, f64), String> {
-        let x = &self.extraction.eval;
-        let peak = x.a_peak.iter().copied().fold(0.0, f64::max);
-        match self.limit {
-            Some(limit) if peak > limit => {
-                let r = crate::extract::constrained(
-                    self.model,
-                    self.landscape,
-                    self.extraction.k,
-                    limit,
-                )
-                .ok_or_else(|| {
-                    format!("no gains on the grid keep every demo's a_peak within {limit}")
-                })?;
-                // The limit removes points first; what is left must still
-                // be acceptable.
-                let bound = (1.0 + self.acceptable.eps) * self.extraction.j;
-                if r.value > bound {
-                    return Err(format!(
-                        "the optimum under the a_peak limit {limit}, D/M {}, K/M {} (J {:.6}), is \
-                         more than {} above J* {:.6}: no gains in the acceptable region keep \
-                         a_peak within the limit",
-                        num(r.dm),
-                        num(r.km),
-                        r.value,
-                        percent(self.acceptable.eps),
-                        self.extraction.j
-                    ));
-                }
-                Ok((r.dm, r.km))
-            }
-            _ => Ok((x.dm, x.km)),
-        }
-    }
-
-    /// The region's points (within the limit) as `(dm, km, zeta, a_peak)`.
-    fn candidates(&self) -> Vec<[f64; 4]> {
-        let n_km = self.landscape.grid.km.n;
-        let peak = self.landscape.a_peak();
-        self.acceptable
-            .mask
-            .iter()
-            .enumerate()
-            .filter(|&(i, &m)| m && self.limit.is_none_or(|l| peak[i] <= l))
-            .map(|(i, _)| {
-                let (dm, km) = (self.landscape.dm[i / n_km], self.landscape.km[i % n_km]);
-                [dm, km, zeta(dm, km), peak[i]]
-            })
-            .collect()
-    }
-
-    fn grid_pick(&self, rule: PickRule) -> Result<(f64, f64), String> {
-        let points = self.candidates();
-        let limit = self
-            .limit
-            .map_or(String::new(), |l| format!(" with a_peak within {l}"));
-        if points.is_empty() {
-            return Err(format!(
-                "no grid point is within {} of J*{limit}: no {} pick (a finer grid or a \
-                 larger --accept-eps finds one)",
-                percent(self.acceptable.eps),
-                rule.name()
-            ));
-        }
-        // Ties: the smaller K/M, then the smaller D/M.
-        let tie = |a: &[f64; 4], b: &[f64; 4]| a[1].total_cmp(&b[1]).then(a[0].total_cmp(&b[0]));
-        let band_distance = |z: f64| (COMPLIANT_ZETA[0] - z).max(z - COMPLIANT_ZETA[1]).max(0.0);
-        let best = match rule {
-            PickRule::Compliant => {
-                let inside = points.iter().filter(|p| band_distance(p[2]) == 0.0);
-                match inside.min_by(|a, b| tie(a, b)) {
-                    Some(p) => *p,
-                    None => {
-                        let near = points
-                            .iter()
-                            .min_by(|a, b| {
-                                band_distance(a[2])
-                                    .total_cmp(&band_distance(b[2]))
-                                    .then(tie(a, b))
-                            })
-                            .copied()
-                            .unwrap_or(points[0]);
-                        return Err(format!(
-                            "no gains in the acceptable region{limit} have zeta in [{}, {}]; the \
-                             nearest is D/M {}, K/M {} (zeta {:.3})",
-                            COMPLIANT_ZETA[0],
-                            COMPLIANT_ZETA[1],
-                            num(near[0]),
-                            num(near[1]),
-                            near[2]
-                        ));
-                    }
-                }
-            }
-            PickRule::Critical => *points
-                .iter()
-                .min_by(|a, b| {
-                    (a[2] - 1.0)
-                        .abs()
-                        .total_cmp(&(b[2] - 1.0).abs())
-                        .then(tie(a, b))
-                })
-                .unwrap_or(&points[0]),
-            PickRule::Smooth | PickRule::Optimum => *points
-                .iter()
-                .min_by(|a, b| a[3].total_cmp(&b[3]).then(tie(a, b)))
-                .unwrap_or(&points[0]),
-        };
-        Ok((best[0], best[1]))
-    }
 }
