@@ -61,8 +61,27 @@ fn landscape_json_has_exactly_the_documented_shape() {
     assert_eq!(
         sorted_keys(&doc),
         [
-            "a_peak", "d_sum", "demos", "dm", "e_sum", "j", "k", "km", "optimum", "s", "table"
+            "a_peak",
+            "d_rot_sum",
+            "d_sum",
+            "demos",
+            "dm",
+            "e_sum",
+            "j",
+            "k",
+            "km",
+            "optimum",
+            "s",
+            "table"
         ]
+    );
+    // The reach sample's tracker sends no rotation: no orientation error.
+    assert!(
+        doc["d_rot_sum"]
+            .as_array()
+            .expect("rows")
+            .iter()
+            .all(|row| row.as_array().expect("row").iter().all(serde_json::Value::is_null))
     );
     let n = 12;
     assert_eq!(doc["dm"].as_array().expect("dm").len(), n);

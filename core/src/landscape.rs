@@ -168,6 +168,9 @@ pub struct Landscape {
     pub values: [Vec<f64>; quantity::COUNT],
     /// How many points are computed.
     pub filled: usize,
+    /// The weight of `sum d_rot` in J ([`crate::dmp::DmpSettings::k_rot`];
+    /// 0: the paper's J).
+    pub k_rot: f64,
 }
 
 impl Landscape {
@@ -237,6 +240,16 @@ impl Landscape {
             km: grid.km.values(),
             values: std::array::from_fn(|_| vec![f64::NAN; len]),
             filled: 0,
+            k_rot: 0.0,
+        }
+    }
+
+    /// A blank landscape over `grid` for `model`: its J weighs the
+    /// orientation error as the model's settings say.
+    pub fn for_model(grid: Grid, model: &Model) -> Self {
+        Self {
+            k_rot: model.settings().k_rot,
+            ..Self::blank(grid)
         }
     }
 
@@ -250,12 +263,15 @@ impl Landscape {
         self.filled == self.grid.len()
     }
 
-    /// `J = S + k sum d` at every point (recombination, no integration).
+    /// `J = S + k sum d` (plus `k_rot sum d_rot`, [`crate::model::j_of`])
+    /// at every point (recombination, no integration).
     pub fn j(&self, k: f64) -> Vec<f64> {
+        let rot = self.values(Quantity::DRotSum);
         self.s()
             .iter()
             .zip(self.d_sum())
-            .map(|(s, d)| s + k * d)
+            .zip(rot)
+            .map(|((&s, &d), &r)| crate::model::j_of(s, d, r, k, self.k_rot))
             .collect()
     }
 
@@ -331,11 +347,12 @@ impl LandscapeJob {
     /// A job over `grid` in the given order.
     pub fn new(model: Arc<Model>, grid: Grid, order: FillOrder) -> Result<Self> {
         grid.validate()?;
+        let landscape = Landscape::for_model(grid, &model);
         Ok(Self {
             model,
             order: fill_order(&grid, order),
             next: 0,
-            landscape: Landscape::blank(grid),
+            landscape,
         })
     }
 

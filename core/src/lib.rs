@@ -41,6 +41,7 @@ pub mod model;
 pub mod nelder_mead;
 pub mod notice;
 pub mod orientation;
+mod orientation_kernel;
 pub mod pipeline;
 pub mod planted;
 mod planted_orientation;

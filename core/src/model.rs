@@ -13,6 +13,7 @@ use serde::Serialize;
 use crate::dmp::{Basis, DmpSettings, Projections};
 use crate::error::{Error, Result};
 use crate::geom::Vec3;
+use crate::orientation_kernel::{self, RotKernel};
 use crate::prepare::PreparedDemo;
 use crate::quantity::{self, PointValues, Quantity};
 use crate::similarity::{Similarity, trapezoid};
@@ -36,6 +37,11 @@ pub struct Model {
     /// Each demo's orientation projections (method.md section 12), `None`
     /// for a demo without orientation.
     orientation: Vec<Option<Projections>>,
+    /// Each demo's orientation kernel (`None` without orientation).
+    rot_kernels: Vec<Option<RotKernel>>,
+    /// With separate orientation gains: each demo's `(d_rot, alpha_peak)`
+    /// at them, the same at every position gain pair.
+    rot_fixed: Option<Vec<Option<(f64, f64)>>>,
 }
 
 /// One demo laid out for the integration kernel, in scaled variables
@@ -109,12 +115,33 @@ pub struct PointEval {
     pub e: Vec<f64>,
     /// `E = sum(e)`.
     pub e_sum: f64,
+    /// Orientation error per demo (method.md section 12), radians; NaN
+    /// for a demo without orientation.
+    pub d_rot: Vec<f64>,
+    /// Peak angular acceleration per demo, rad/s^2 of the unit-time
+    /// motion; NaN without orientation.
+    pub alpha_peak: Vec<f64>,
+    /// `sum d_rot` over the demos with orientation, degrees (NaN when none
+    /// has one).
+    pub d_rot_sum: f64,
+    /// The weight of `d_rot_sum` in J ([`DmpSettings::k_rot`]).
+    pub k_rot: f64,
 }
 
 impl PointEval {
-    /// `J = S + k sum(d)`.
+    /// `J = S + k sum(d)` (plus `k_rot sum d_rot` when `k_rot` is not 0).
     pub fn j(&self, k: f64) -> f64 {
-        self.s + k * self.d_sum
+        j_of(self.s, self.d_sum, self.d_rot_sum, k, self.k_rot)
+    }
+}
+
+/// `J = S + k sum d`, plus `k_rot sum d_rot` (degrees) when `k_rot` is not
+/// 0 (so the paper's J keeps its bits).
+pub fn j_of(s: f64, d_sum: f64, d_rot_sum: f64, k: f64, k_rot: f64) -> f64 {
+    if k_rot == 0.0 {
+        s + k * d_sum
+    } else {
+        s + k * d_sum + k_rot * d_rot_sum
     }
 }
 
@@ -165,10 +192,27 @@ impl Model {
             .map(|(d, p)| DemoKernel::new(d, p))
             .collect();
         let skill = skill_error::kernels(&demos, &projections, settings.skill_mode);
-        let orientation = demos
+        let orientation: Vec<Option<Projections>> = demos
             .iter()
             .map(|d| d.orientation.as_ref().map(|o| o.projections(&basis)))
             .collect();
+        let rot_kernels: Vec<Option<RotKernel>> = demos
+            .iter()
+            .zip(&orientation)
+            .map(|(d, p)| Some(RotKernel::new(d.orientation.as_ref()?, p.as_ref()?)))
+            .collect();
+        check_orientation_settings(&settings, rot_kernels.iter().any(Option::is_some))?;
+        let rot_fixed = settings.orientation_gains.map(|[dm, km]| {
+            rot_kernels
+                .iter()
+                .map(|k| {
+                    k.as_ref().map(|k| {
+                        let (d, a) = orientation_kernel::integrate::<1, true>(k, dm, [km]);
+                        (d[0], a[0])
+                    })
+                })
+                .collect()
+        });
         Ok(Self {
             demos,
             settings,
@@ -178,6 +222,8 @@ impl Model {
             kernels,
             skill,
             orientation,
+            rot_kernels,
+            rot_fixed,
         })
     }
 
@@ -219,6 +265,16 @@ impl Model {
         }
     }
 
+    /// The same model without its orientation error (d_rot is NaN and
+    /// costs nothing): what `dmpscope bench` compares the landscape with.
+    pub fn without_orientation_error(&self) -> Self {
+        Self {
+            rot_kernels: vec![None; self.demos.len()],
+            rot_fixed: None,
+            ..self.clone()
+        }
+    }
+
     /// The orientation projections of demo `i` (`None`: no orientation).
     pub fn orientation_projections(&self, i: usize) -> Option<&Projections> {
         self.orientation.get(i).and_then(Option::as_ref)
@@ -229,8 +285,17 @@ impl Model {
         self.orientation.iter().any(Option::is_some)
     }
 
-    /// Demo `i`'s orientation regenerated at `(dm, km)` from its own start
-    /// to its own goal (method.md section 12); `None` without orientation.
+    /// The gains the orientation DMP runs at when the position's are
+    /// `(dm, km)`: the separate orientation gains where set, else the same.
+    pub fn orientation_gains(&self, dm: f64, km: f64) -> (f64, f64) {
+        self.settings
+            .orientation_gains
+            .map_or((dm, km), |[d, k]| (d, k))
+    }
+
+    /// Demo `i`'s orientation regenerated at the position gains `(dm, km)`
+    /// (the orientation's own where set) from its own start to its own
+    /// goal (method.md section 12); `None` without orientation.
     pub fn orientation_rollout(
         &self,
         i: usize,
@@ -244,18 +309,41 @@ impl Model {
             w0: prepared.w[0],
             goal: prepared.goal,
         };
+        let (dm, km) = self.orientation_gains(dm, km);
         Some(crate::orientation::rollout(proj, dm, km, target))
     }
 
-    /// `d_rot` (radians) and `alpha_peak` of demo `i` at `(dm, km)`
-    /// (method.md section 12); `None` without orientation.
+    /// `d_rot` (radians) and `alpha_peak` of demo `i` at the position gains
+    /// `(dm, km)` (method.md section 12); `None` without orientation.
     pub fn rotation_error(&self, i: usize, dm: f64, km: f64) -> Option<(f64, f64)> {
-        let path = self.orientation_rollout(i, dm, km)?;
-        let target = &self.demos[i].orientation.as_ref()?.q_raw;
-        Some((
-            crate::orientation::error(&path.q, target),
-            path.alpha_peak(),
-        ))
+        if let Some(fixed) = &self.rot_fixed {
+            return fixed.get(i).copied().flatten();
+        }
+        let kernel = self.rot_kernels.get(i)?.as_ref()?;
+        let (d, a) = orientation_kernel::integrate::<1, true>(kernel, dm, [km]);
+        Some((d[0], a[0]))
+    }
+
+    /// `sum d_rot` in degrees at the gain pairs `(dm, km[l])` (NaN when no
+    /// demo has an orientation).
+    fn d_rot_sum_lanes<const L: usize>(&self, dm: f64, km: [f64; L]) -> [f64; L] {
+        if let Some(fixed) = &self.rot_fixed {
+            return [fixed_sum(fixed); L];
+        }
+        let mut sum = [0.0; L];
+        let mut any = false;
+        for kernel in self.rot_kernels.iter().flatten() {
+            any = true;
+            let d = orientation_kernel::integrate::<L, false>(kernel, dm, km).0;
+            for l in 0..L {
+                sum[l] += d[l];
+            }
+        }
+        if any {
+            sum.map(f64::to_degrees)
+        } else {
+            [f64::NAN; L]
+        }
     }
 
     /// Why the model has no skill error (a frame skill whose demos' mean
@@ -281,6 +369,24 @@ impl Model {
             Err(_) => vec![f64::NAN; self.demos.len()],
         };
         let d_sum = d.iter().sum();
+        let rot: Vec<(f64, f64)> = (0..self.demos.len())
+            .map(|i| {
+                self.rotation_error(i, dm, km)
+                    .unwrap_or((f64::NAN, f64::NAN))
+            })
+            .collect();
+        let d_rot: Vec<f64> = rot.iter().map(|r| r.0).collect();
+        // Summed over the demos with orientation, in order, as the lanes do.
+        let with = d_rot
+            .iter()
+            .zip(&self.rot_kernels)
+            .filter(|(_, k)| k.is_some())
+            .map(|(d, _)| *d);
+        let d_rot_sum = if self.rot_kernels.iter().any(Option::is_some) {
+            with.sum::<f64>().to_degrees()
+        } else {
+            f64::NAN
+        };
         PointEval {
             dm,
             km,
@@ -291,6 +397,10 @@ impl Model {
             s: self.similarity.evaluate(dm, km),
             e_sum: e.iter().sum(),
             e,
+            alpha_peak: rot.iter().map(|r| r.1).collect(),
+            d_rot,
+            d_rot_sum,
+            k_rot: self.settings.k_rot,
         }
     }
 
@@ -321,24 +431,32 @@ impl Model {
             Err(_) => e_sum = [f64::NAN; L],
         }
         let s = self.similarity.evaluate_lanes(dm, km);
+        let d_rot_sum = self.d_rot_sum_lanes(dm, km);
         std::array::from_fn(|l| {
             let mut point = [0.0; quantity::COUNT];
             point[Quantity::DSum.index()] = d_sum[l];
             point[Quantity::S.index()] = s[l];
             point[Quantity::APeak.index()] = peak[l];
             point[Quantity::ESum.index()] = e_sum[l];
+            point[Quantity::DRotSum.index()] = d_rot_sum[l];
             point
         })
     }
 
-    /// `J = S + k sum d` at one gain pair, the same bits as
+    /// `J` at one gain pair ([`j_of`]), the same bits as
     /// `evaluate(dm, km).j(k)` without the per-demo lists and `a_peak`.
     pub fn j(&self, dm: f64, km: f64, k: f64) -> f64 {
         let mut d_sum = 0.0;
         for kernel in &self.kernels {
             d_sum += integrate::<1, false>(kernel, dm, [km]).0[0];
         }
-        self.similarity.evaluate(dm, km) + k * d_sum
+        let k_rot = self.settings.k_rot;
+        let d_rot_sum = if k_rot == 0.0 {
+            0.0
+        } else {
+            self.d_rot_sum_lanes(dm, [km])[0]
+        };
+        j_of(self.similarity.evaluate(dm, km), d_sum, d_rot_sum, k, k_rot)
     }
 
     /// `S` alone at one gain pair (no integration).
@@ -386,6 +504,14 @@ impl Model {
                 .iter()
                 .map(|&i| self.orientation[i].clone())
                 .collect(),
+            rot_kernels: indices
+                .iter()
+                .map(|&i| self.rot_kernels[i].clone())
+                .collect(),
+            rot_fixed: self
+                .rot_fixed
+                .as_ref()
+                .map(|f| indices.iter().map(|&i| f[i]).collect()),
         })
     }
 
@@ -430,6 +556,40 @@ impl Model {
         });
         trapezoid(errs, n) / (n.max(2) - 1) as f64
     }
+}
+
+/// `sum d_rot` in degrees of fixed per-demo errors (NaN when none has one).
+fn fixed_sum(fixed: &[Option<(f64, f64)>]) -> f64 {
+    let with: Vec<f64> = fixed.iter().flatten().map(|r| r.0).collect();
+    if with.is_empty() {
+        f64::NAN
+    } else {
+        with.iter().sum::<f64>().to_degrees()
+    }
+}
+
+/// Checks `k_rot` and the orientation gains: finite, `k_rot >= 0`, gains
+/// positive, and `k_rot > 0` only with an orientation to weigh.
+fn check_orientation_settings(settings: &DmpSettings, any_orientation: bool) -> Result<()> {
+    let k_rot = settings.k_rot;
+    if !(k_rot.is_finite() && k_rot >= 0.0) {
+        return Err(Error::InvalidSetting(format!(
+            "k_rot must be a finite number >= 0, got {k_rot}"
+        )));
+    }
+    if k_rot > 0.0 && !any_orientation {
+        return Err(Error::InvalidSetting(
+            "k_rot weighs the orientation error, but no demo has an orientation".into(),
+        ));
+    }
+    if let Some([dm, km]) = settings.orientation_gains
+        && !(dm.is_finite() && km.is_finite() && dm > 0.0 && km > 0.0)
+    {
+        return Err(Error::InvalidSetting(format!(
+            "the orientation gains must be positive numbers, got D/M {dm}, K/M {km}"
+        )));
+    }
+    Ok(())
 }
 
 /// Integrates a kernel at `(dm, km[l])` for each lane (method.md section

@@ -191,32 +191,31 @@ pub fn forcing_at(proj: &Projections, dm: f64, km: f64) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// Integrates the orientation DMP with a forcing term on the grid.
+/// Integrates the orientation DMP with a forcing term on the grid (the
+/// kernel's steps: [`crate::orientation_kernel`]).
 pub fn rollout_forcing(
     forcing: &[[f64; 3]],
     dm: f64,
     km: f64,
     target: OrientationTarget,
 ) -> OrientationRollout {
+    use crate::orientation_kernel::{Lanes, Start};
     let n = forcing.len();
     let dt = 1.0 / (n.max(2) - 1) as f64;
-    let mut q = target.start;
-    let mut w = target.w0;
+    let mut lanes = Lanes::new(Start::new(target.start, target.w0, target.goal));
     let mut out = OrientationRollout {
         q: Vec::with_capacity(n),
         w: Vec::with_capacity(n),
         a: Vec::with_capacity(n),
     };
     for f in forcing {
-        out.q.push(q);
-        out.w.push(w);
-        let r = rotation::rotation_vector(target.goal, q);
-        let a: [f64; 3] = std::array::from_fn(|ax| -dm * w[ax] + km * r[ax] + f[ax]);
-        out.a.push(a);
-        for ax in 0..3 {
-            w[ax] += a[ax] * dt;
-        }
-        q = rotation::normalised(rotation::mul(rotation::exp(w.map(|v| 0.5 * v * dt)), q));
+        // q = conj(r) * q_g.
+        out.q
+            .push(rotation::mul(rotation::conj(lanes.r(0)), target.goal));
+        out.w.push(lanes.w(0));
+        let parts = f.map(|v| [v, 0.0, 0.0]);
+        let a = lanes.step(&parts, dm, &[wide::f64x4::splat(km); 4], dt);
+        out.a.push(a.map(|v| v[0].as_array()[0]));
     }
     out
 }
@@ -259,10 +258,20 @@ impl OrientationPrimitive {
         start: Option<Q>,
         goal: Option<Q>,
     ) -> OrientationRollout {
+        let start = start.unwrap_or(self.start);
+        // A new goal is taken in the start's hemisphere (q and -q are one
+        // orientation): the shorter way round, not a turn of over 180
+        // degrees that the sign of a typed quaternion would ask for. The
+        // demo's own goal keeps its sign (a demo may turn further).
+        let goal = match goal {
+            Some(g) if rotation::dot(g, start) < 0.0 => g.map(|c| -c),
+            Some(g) => g,
+            None => self.goal,
+        };
         let target = OrientationTarget {
-            start: start.unwrap_or(self.start),
+            start,
             w0: self.w0,
-            goal: goal.unwrap_or(self.goal),
+            goal,
         };
         rollout_forcing(&self.forcing, dm, km, target)
     }

@@ -21,13 +21,22 @@ pub enum Quantity {
     APeak,
     /// The skill error E (method.md section 11), metres.
     ESum,
+    /// sum over demos of d_rot (method.md section 12), degrees; NaN when no
+    /// demo has an orientation.
+    DRotSum,
 }
 
 /// How many quantities there are (the length of a point's values).
-pub const COUNT: usize = 4;
+pub const COUNT: usize = 5;
 
 /// Every quantity, in the order of a point's values.
-pub const ALL: [Quantity; COUNT] = [Quantity::DSum, Quantity::S, Quantity::APeak, Quantity::ESum];
+pub const ALL: [Quantity; COUNT] = [
+    Quantity::DSum,
+    Quantity::S,
+    Quantity::APeak,
+    Quantity::ESum,
+    Quantity::DRotSum,
+];
 
 /// A point's values, one per quantity in [`ALL`]'s order.
 pub type PointValues = [f64; COUNT];
@@ -95,6 +104,15 @@ impl Quantity {
                 unit: "m",
                 log_colour: true,
                 about: "the one skill's error regenerating every demo at its own start and goal",
+            },
+            Self::DRotSum => About {
+                label: "d_rot",
+                title: "sum d_rot [deg]",
+                file: "sum-d-rot",
+                key: "d_rot_sum",
+                unit: "deg",
+                log_colour: true,
+                about: "the demos' orientation error (angle to the demo), summed, in degrees",
             },
         }
     }

@@ -84,6 +84,17 @@ pub struct TableRow {
     /// `E = sum e` (NaN without a skill error; absent in old reports).
     #[serde(default = "nan", deserialize_with = "nan_for_null")]
     pub e_sum: f64,
+    /// Orientation error per demo (method.md section 12), degrees; NaN for
+    /// a demo without orientation.
+    #[serde(default, deserialize_with = "nans_for_nulls")]
+    pub d_rot: Vec<f64>,
+    /// Peak angular acceleration per demo, rad/s^2 of unit time; NaN
+    /// without orientation.
+    #[serde(default, deserialize_with = "nans_for_nulls")]
+    pub alpha_peak: Vec<f64>,
+    /// `sum d_rot`, degrees (NaN when no demo has an orientation).
+    #[serde(default = "nan", deserialize_with = "nan_for_null")]
+    pub d_rot_sum: f64,
 }
 
 fn nan() -> f64 {
@@ -116,13 +127,22 @@ impl TableRow {
             j: eval.j(k),
             e: eval.e.clone(),
             e_sum: eval.e_sum,
+            d_rot: eval.d_rot.iter().map(|r| r.to_degrees()).collect(),
+            alpha_peak: eval.alpha_peak.clone(),
+            d_rot_sum: eval.d_rot_sum,
         }
+    }
+
+    /// Whether any demo of the row has an orientation.
+    pub fn oriented(&self) -> bool {
+        self.d_rot_sum.is_finite()
     }
 
     /// The row's cells as the CSV and Markdown tables print them: name,
     /// D/M, K/M, zeta, S, sum d, J, E, then `d_mean` per demo in mm, then
-    /// `a_peak` per demo, then `e` per demo in mm.
-    pub fn cells(&self) -> Vec<String> {
+    /// `a_peak` per demo, then `e` per demo in mm; with `oriented`, then
+    /// sum d_rot, `d_rot` per demo in degrees and `alpha_peak` per demo.
+    pub fn cells(&self, oriented: bool) -> Vec<String> {
         let mut c = vec![
             self.name.clone(),
             format!("{:.3}", self.dm),
@@ -136,6 +156,11 @@ impl TableRow {
         c.extend(self.d_mean.iter().map(|d| format!("{:.3}", d * 1e3)));
         c.extend(self.a_peak.iter().map(|a| format!("{a:.2}")));
         c.extend(self.e.iter().map(|e| format!("{:.3}", e * 1e3)));
+        if oriented {
+            c.push(format!("{:.4}", self.d_rot_sum));
+            c.extend(self.d_rot.iter().map(|d| format!("{d:.4}")));
+            c.extend(self.alpha_peak.iter().map(|a| format!("{a:.2}")));
+        }
         c
     }
 }

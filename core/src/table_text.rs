@@ -14,13 +14,18 @@ impl Report {
         let rows = &self.table;
         let mut s = String::new();
         let name_w = widest(rows.iter().map(|r| r.name.as_str()), 9);
-        let _ = writeln!(
+        let oriented = self.oriented();
+        let _ = write!(
             s,
             "{:<name_w$}  {:>9}  {:>9}  {:>7}  {:>9}  {:>9}  {:>9}  {:>9}",
             "gains", "D/M", "K/M", "zeta", "S", "sum d[m]", "J", "E[m]"
         );
+        if oriented {
+            let _ = write!(s, "  {:>14}", "sum d_rot[deg]");
+        }
+        s.push('\n');
         for r in rows {
-            let _ = writeln!(
+            let _ = write!(
                 s,
                 "{}  {:>9.3}  {:>9.3}  {:>7.3}  {:>9.5}  {:>9.5}  {:>9.5}  {:>9.5}",
                 pad_right(&r.name, name_w),
@@ -32,16 +37,24 @@ impl Report {
                 r.j,
                 r.e_sum
             );
+            if oriented {
+                let _ = write!(s, "  {:>14.4}", r.d_rot_sum);
+            }
+            s.push('\n');
         }
         let names = self.demo_names();
         let demo_w = widest(names.iter().map(String::as_str), 8);
         let col_w = name_w.max(9);
         type Pick = fn(&TableRow) -> &[f64];
-        let parts: [(&str, Pick, f64, usize); 3] = [
+        let mut parts: Vec<(&str, Pick, f64, usize)> = vec![
             ("d_mean [mm]", |r| &r.d_mean, 1e3, 3),
             ("a_peak [m/s^2]", |r| &r.a_peak, 1.0, 2),
             ("e, the skill's error [mm]", |r| &r.e, 1e3, 3),
         ];
+        if self.oriented() {
+            parts.push(("d_rot, the orientation's error [deg]", |r| &r.d_rot, 1.0, 4));
+            parts.push(("alpha_peak [rad/s^2]", |r| &r.alpha_peak, 1.0, 2));
+        }
         for (title, pick, scale, prec) in parts {
             let _ = writeln!(s, "\nTable I: {title}");
             let _ = write!(s, "{:<demo_w$}", "demo");
@@ -68,13 +81,33 @@ impl Report {
         s
     }
 
+    /// Whether any row has an orientation error (the orientation's
+    /// columns are shown).
+    pub fn oriented(&self) -> bool {
+        self.table.iter().any(TableRow::oriented)
+    }
+
     /// The column titles: `fixed`, then one `d_mean`, `a_peak` and `e`
-    /// column per demo, each titled by its function of the demo's name.
-    fn head(&self, fixed: [&str; 8], per_demo: [&dyn Fn(&str) -> String; 3]) -> Vec<String> {
+    /// column per demo, each titled by its function of the demo's name;
+    /// with orientation, `rot_sum` and one `d_rot` and `alpha_peak` column
+    /// per demo.
+    fn head(
+        &self,
+        fixed: [&str; 8],
+        per_demo: [&dyn Fn(&str) -> String; 3],
+        rot_sum: &str,
+        rot_per_demo: [&dyn Fn(&str) -> String; 2],
+    ) -> Vec<String> {
         let names = self.demo_names();
         let mut head: Vec<String> = fixed.map(str::to_owned).into();
         for title in per_demo {
             head.extend(names.iter().map(|d| title(d)));
+        }
+        if self.oriented() {
+            head.push(rot_sum.to_owned());
+            for title in rot_per_demo {
+                head.extend(names.iter().map(|d| title(d)));
+            }
         }
         head
     }
@@ -99,10 +132,15 @@ impl Report {
                 &|d| format!("a_peak {}", cell(d)),
                 &|d| format!("e {} [mm]", cell(d)),
             ],
+            "sum d_rot [deg]",
+            [&|d| format!("d_rot {} [deg]", cell(d)), &|d| {
+                format!("alpha_peak {}", cell(d))
+            }],
         );
+        let oriented = self.oriented();
         let mut out = format!("| {} |\n|{}\n", head.join(" | "), "---|".repeat(head.len()));
         for r in &self.table {
-            let cells: Vec<String> = r.cells().iter().map(|c| cell(c)).collect();
+            let cells: Vec<String> = r.cells(oriented).iter().map(|c| cell(c)).collect();
             let _ = writeln!(out, "| {} |", cells.join(" | "));
         }
         out
@@ -119,14 +157,19 @@ impl Report {
                 &|d| format!("a_peak:{d}"),
                 &|d| format!("e_mm:{d}"),
             ],
+            "d_rot_sum_deg",
+            [&|d| format!("d_rot_deg:{d}"), &|d| {
+                format!("alpha_peak:{d}")
+            }],
         );
+        let oriented = self.oriented();
         let line = |fields: &[String]| {
             let quoted: Vec<String> = fields.iter().map(|f| csv_field(f)).collect();
             quoted.join(",") + "\n"
         };
         let mut out = line(&head);
         for r in &self.table {
-            out.push_str(&line(&r.cells()));
+            out.push_str(&line(&r.cells(oriented)));
         }
         out
     }

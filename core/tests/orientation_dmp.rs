@@ -166,7 +166,25 @@ fn a_new_goal_and_start_orientation_are_reached() {
         })
         .expect("rollout");
     let path = out.orientation.expect("orientation path");
-    assert_eq!(path.q[0], start, "starts exactly at the new start");
+    assert!(
+        (0..4).all(|c| (path.q[0][c] - start[c]).abs() < 1e-15),
+        "starts at the new start (to rounding: the state is the rotation to go)"
+    );
+    for q in &path.q {
+        assert!((rotation::dot(*q, *q) - 1.0).abs() < 1e-12, "unit: {q:?}");
+    }
+    // The same goal with the other sign is the same orientation: the
+    // shorter way round, the same path.
+    let flipped = p
+        .rollout(&Target {
+            goal_orientation: Some(goal.map(|c| -c)),
+            start_orientation: Some(start),
+            ..Target::default()
+        })
+        .expect("rollout")
+        .orientation
+        .expect("path");
+    assert_eq!(flipped.q, path.q, "a flipped goal turns the same way");
     let end = rotation::angle(*path.q.last().expect("end"), goal).to_degrees();
     eprintln!(
         "new goal {:.1} deg from the own: reached within {end:.4} deg",

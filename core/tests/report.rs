@@ -36,11 +36,27 @@ fn the_json_has_the_documented_keys_and_reads_back() {
     assert_eq!(
         row_keys,
         [
-            "a_peak", "d_mean", "d_sum", "dm", "e", "e_sum", "j", "km", "name", "s", "zeta"
+            "a_peak",
+            "alpha_peak",
+            "d_mean",
+            "d_rot",
+            "d_rot_sum",
+            "d_sum",
+            "dm",
+            "e",
+            "e_sum",
+            "j",
+            "km",
+            "name",
+            "s",
+            "zeta"
         ]
     );
-    let back: Report = serde_json::from_value(value).expect("reads back");
-    assert_eq!(back, report);
+    let back: Report = serde_json::from_value(value.clone()).expect("reads back");
+    // NaN (these demos have no orientation: d_rot) is not equal to itself:
+    // the read-back is compared as the JSON it writes again.
+    assert_eq!(serde_json::to_value(&back).expect("json"), value);
+    assert!(back.table[0].d_rot.iter().all(|v| v.is_nan()));
 }
 
 #[test]

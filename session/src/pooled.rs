@@ -83,7 +83,7 @@ impl PoolFill {
             return Ok(None);
         };
         Ok(Some(Self {
-            fill: TiledFill::new(grid, generation.id(), TILE_POINTS)?,
+            fill: TiledFill::new(grid, generation.id(), TILE_POINTS, model.settings().k_rot)?,
             generation,
             model: model.clone(),
             started: clock.now(),

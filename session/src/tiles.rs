@@ -41,8 +41,9 @@ pub struct TiledFill {
 
 impl TiledFill {
     /// A fill of `grid` in tiles of at most `tile_points` points, coarse
-    /// levels first.
-    pub fn new(grid: Grid, generation: u64, tile_points: usize) -> Result<Self> {
+    /// levels first, for a landscape whose J weighs the orientation error
+    /// by `k_rot` (the model's setting).
+    pub fn new(grid: Grid, generation: u64, tile_points: usize, k_rot: f64) -> Result<Self> {
         grid.validate()?;
         let order = fill_order(&grid, FillOrder::CoarseToFine);
         let tiles: Vec<Vec<(u32, u32)>> = order
@@ -51,7 +52,10 @@ impl TiledFill {
             .collect();
         Ok(Self {
             generation,
-            landscape: Landscape::blank(grid),
+            landscape: Landscape {
+                k_rot,
+                ..Landscape::blank(grid)
+            },
             stored: vec![false; tiles.len()],
             tiles,
             next: 0,
@@ -173,7 +177,7 @@ mod tests {
     #[test]
     fn tiles_answered_in_any_order_give_the_landscape_of_one_pass() {
         let model = model();
-        let mut fill = TiledFill::new(grid(), 7, 10).expect("fill");
+        let mut fill = TiledFill::new(grid(), 7, 10, 0.0).expect("fill");
         let mut out = Vec::new();
         while let Some((t, points)) = fill.next_tile() {
             out.push((t, points.to_vec()));
@@ -202,7 +206,7 @@ mod tests {
     #[test]
     fn stale_duplicate_and_malformed_answers_never_reach_the_landscape() {
         let model = model();
-        let mut fill = TiledFill::new(grid(), 2, 10).expect("fill");
+        let mut fill = TiledFill::new(grid(), 2, 10, 0.0).expect("fill");
         let (t, points) = fill
             .next_tile()
             .map(|(t, p)| (t, p.to_vec()))
@@ -222,7 +226,7 @@ mod tests {
 
     #[test]
     fn a_tile_whose_worker_died_is_handed_out_again_once() {
-        let mut fill = TiledFill::new(grid(), 0, 100).expect("fill");
+        let mut fill = TiledFill::new(grid(), 0, 100, 0.0).expect("fill");
         let (first, _) = fill.next_tile().expect("tile 0");
         let (second, _) = fill.next_tile().expect("tile 1");
         assert!(

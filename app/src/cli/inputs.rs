@@ -257,6 +257,15 @@ pub struct InputArgs {
     /// rate (at least --sg-order + 2); overrides --sg-window.
     #[arg(long, value_name = "S", value_parser = positive_seconds)]
     pub sg_seconds: Option<f64>,
+    /// An option beyond the paper: add k_rot times the demos' summed
+    /// orientation error (degrees) to J (method.md section 12; 0, the
+    /// default, keeps the paper's J on positions).
+    #[arg(long, default_value_t = 0.0, value_name = "K_ROT")]
+    pub k_rot: f64,
+    /// Separate gains for the orientation DMP (default: the position's, one
+    /// pair for the pose as movement_primitives' CartesianDMP has).
+    #[arg(long, num_args = 2, value_names = ["DM", "KM"])]
+    pub orientation_gains: Option<Vec<f64>>,
 }
 
 /// A skill mode by name.
@@ -291,6 +300,11 @@ impl InputArgs {
             basis_functions: self.basis,
             axis_sd_floor: self.axis_sd_floor,
             skill_mode: self.skill_mode,
+            k_rot: self.k_rot,
+            orientation_gains: self
+                .orientation_gains
+                .as_deref()
+                .and_then(|g| Some([*g.first()?, *g.get(1)?])),
             ..DmpSettings::default()
         }
     }

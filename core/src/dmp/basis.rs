@@ -23,6 +23,16 @@ pub struct DmpSettings {
     /// section 11).
     #[serde(default)]
     pub skill_mode: crate::skill_error::SkillMode,
+    /// The weight of the orientation error in J, per degree: `J = S + k
+    /// sum d + k_rot sum d_rot` with `d_rot` in degrees (an option beyond
+    /// the method, `--k-rot`; 0, the default, leaves J the paper's).
+    #[serde(default)]
+    pub k_rot: f64,
+    /// Separate gains `[D/M, K/M]` for the orientation DMP (`None`, the
+    /// default: the position's, one pair for the pose as method.md section
+    /// 12 says); `--orientation-gains`.
+    #[serde(default)]
+    pub orientation_gains: Option<[f64; 2]>,
 }
 
 impl Default for DmpSettings {
@@ -32,6 +42,8 @@ impl Default for DmpSettings {
             alpha_x: 100f64.ln(),
             axis_sd_floor: 0.0,
             skill_mode: crate::skill_error::SkillMode::Frame,
+            k_rot: 0.0,
+            orientation_gains: None,
         }
     }
 }

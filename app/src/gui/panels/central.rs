@@ -103,6 +103,7 @@ fn maps(
             shown.j[idx],
             shown.values(Quantity::APeak)[idx],
             shown.values(Quantity::ESum)[idx],
+            shown.values(Quantity::DRotSum)[idx],
         ]
     };
     let region = session
@@ -156,9 +157,11 @@ fn maps(
     } else {
         &[Quantity::DSum]
     };
+    // d_rot only where a demo has an orientation.
+    let oriented = session.model().is_some_and(|m| m.has_orientation());
     let others: Vec<Quantity> = quantity::ALL
         .into_iter()
-        .filter(|q| !fixed.contains(q))
+        .filter(|q| !fixed.contains(q) && (oriented || *q != Quantity::DRotSum))
         .collect();
     let mut chosen = match second {
         Map::Quantity(q) if others.contains(&q) => second,

@@ -1,0 +1,363 @@
+//! The orientation DMP's integration (method.md section 12) over `L` gain
+//! pairs that share D/M, for landscapes of `d_rot`, and the one step every
+//! orientation rollout takes: the orientation's counterpart of the
+//! position kernel in `model.rs`. Every lane does the arithmetic of a lone
+//! pair, so a landscape point, [`crate::Model::evaluate`] and
+//! [`crate::orientation::rollout_forcing`] agree to the bit.
+//!
+//! The state is the rotation still to go, `r = q_g * conj(q)`, not `q`:
+//! `2 log(q_g * conj(q))` is then `2 log(r)`, the update
+//! `q <- exp(w dt / 2) * q` is `r <- r * conj(exp(w dt / 2))`, and the
+//! error's `|q . q_raw|` is `|r . (q_g * conj(q_raw))|`, a dot product with
+//! a target prepared once. `r` is brought back to unit norm after every
+//! step (one Newton step of `1 / |r|`), as the reference renormalises `q`.
+//!
+//! The transcendental functions are polynomials where their arguments
+//! allow, so the lanes vectorise: with `x = 1 - c` for a unit quaternion's
+//! scalar part `c` in [0, 1], `atan2(|v|, c) / |v| = H(x)` and
+//! `acos(c) = sqrt(2 x) P(x)`, `H` and `P` Chebyshev interpolants on
+//! [0, 1] (relative error below 1.6e-12, far inside the 1e-6 contract);
+//! `exp(u)` is its Taylor series in `|u|^2` while `|u|^2 <= 2.5e-3`
+//! (truncation below 1e-16). Where an argument leaves that range (a
+//! rotation to go of more than 180 degrees, an angular step over 0.05 rad)
+//! the lane takes `atan2`, `sin` and `cos`. Plain multiplications and
+//! additions, no fused multiply-add: the browser's build gives the same
+//! bits.
+
+use crate::dmp::Projections;
+use crate::orientation::PreparedOrientation;
+use wide::f64x4;
+
+use crate::rotation::{self, Q};
+
+/// `acos(1 - x) / sqrt(2 x)` on [0, 1]: Chebyshev interpolant of degree
+/// 12 in monomial form (relative error 1.4e-12).
+const P: [f64; 13] = [
+    1.000_000_000_000_808_2,
+    0.083_333_333_060_492_69,
+    0.018_750_015_174_264_147,
+    0.005_580_027_533_005_156,
+    0.001_902_566_573_258_662,
+    0.000_674_672_976_243_320_6,
+    0.000_374_022_449_822_012,
+    -0.000_177_193_984_171_011_2,
+    0.000_580_671_519_209_989_3,
+    -0.000_650_438_409_525_845_2,
+    0.000_548_688_246_292_330_9,
+    -0.000_254_817_703_870_516_84,
+    5.918_710_225_928_678e-5,
+];
+
+/// `acos(1 - x) / sqrt(x (2 - x))` on [0, 1]: Chebyshev interpolant of
+/// degree 14 in monomial form (relative error 1.6e-12).
+const H: [f64; 15] = [
+    1.000_000_000_001_252_8,
+    0.333_333_332_770_229_14,
+    0.133_333_375_148_984_94,
+    0.057_141_637_300_469_77,
+    0.025_415_364_999_111_064,
+    0.011_375_321_663_665_916,
+    0.006_322_844_843_329_726,
+    -0.001_502_298_021_389_347,
+    0.012_347_249_346_905_799,
+    -0.021_609_571_116_093_653,
+    0.031_309_013_051_909_154,
+    -0.030_025_049_047_274_998,
+    0.019_484_702_657_264_683,
+    -0.007_507_430_365_838_659,
+    0.001_377_833_559_918_371_2,
+];
+
+/// The largest `|u|^2` for which `exp(u)` takes its Taylor series.
+const EXP_SERIES_MAX: f64 = 2.5e-3;
+
+/// One demo's orientation laid out for the kernel.
+#[derive(Clone, Debug)]
+pub(crate) struct RotKernel {
+    /// Per grid point: `[F0, F1, F2]` per axis of the forcing term.
+    forcing: Vec<[[f64; 3]; 3]>,
+    /// Per grid point: `q_g * conj(q_raw)`, the error's target seen from
+    /// the goal.
+    target: Vec<Q>,
+    /// Where the rollout starts.
+    start: Start,
+}
+
+/// Where an orientation rollout starts: the rotation to go and the
+/// angular velocity.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Start {
+    /// `q_g * conj(q_0)`, unit norm.
+    pub(crate) r0: Q,
+    /// `w(0)`, unit time.
+    pub(crate) w0: [f64; 3],
+}
+
+impl Start {
+    /// From a start orientation, an initial angular velocity and a goal.
+    pub(crate) fn new(start: Q, w0: [f64; 3], goal: Q) -> Self {
+        Self {
+            r0: rotation::normalised(rotation::mul(goal, rotation::conj(start))),
+            w0,
+        }
+    }
+}
+
+impl RotKernel {
+    /// The kernel of a prepared orientation and its projections.
+    pub(crate) fn new(prepared: &PreparedOrientation, proj: &Projections) -> Self {
+        let goal = prepared.goal;
+        Self {
+            forcing: proj.f.clone(),
+            target: prepared
+                .q_raw
+                .iter()
+                .map(|&t| rotation::mul(goal, rotation::conj(t)))
+                .collect(),
+            start: Start::new(prepared.q[0], prepared.w[0], goal),
+        }
+    }
+}
+
+/// Vectors of four `f64` integrated together: enough independent work to
+/// hide the latency of the polynomials' chains, few enough that the state
+/// stays in registers.
+const V: usize = 4;
+
+/// Lanes integrated together.
+pub(crate) const LANES: usize = 4 * V;
+
+/// A value per lane.
+pub(crate) type Lane = [f64x4; V];
+
+/// The state of [`LANES`] orientation rollouts that share D/M.
+pub(crate) struct Lanes {
+    /// The rotation to go per component.
+    r: [Lane; 4],
+    /// The angular velocity per axis.
+    w: [Lane; 3],
+}
+
+/// `f` of each vector of lanes.
+#[inline(always)]
+fn each(f: impl Fn(usize) -> f64x4) -> Lane {
+    std::array::from_fn(f)
+}
+
+impl Lanes {
+    /// Every lane at `start`.
+    pub(crate) fn new(start: Start) -> Self {
+        Self {
+            r: start.r0.map(|c| [f64x4::splat(c); V]),
+            w: start.w0.map(|c| [f64x4::splat(c); V]),
+        }
+    }
+
+    /// Lane `l`'s rotation to go.
+    pub(crate) fn r(&self, l: usize) -> Q {
+        self.r.map(|c| c[l / 4].as_array()[l % 4])
+    }
+
+    /// Lane `l`'s angular velocity.
+    pub(crate) fn w(&self, l: usize) -> [f64; 3] {
+        self.w.map(|c| c[l / 4].as_array()[l % 4])
+    }
+
+    /// The angle `2 acos(min(1, |q . q_raw|))` per lane, `target` being
+    /// `q_g * conj(q_raw)`.
+    #[inline(always)]
+    pub(crate) fn angle(&self, target: Q) -> Lane {
+        let t = target.map(f64x4::splat);
+        let r = &self.r;
+        let x = each(|v| {
+            let c = (r[0][v] * t[0] + r[1][v] * t[1] + r[2][v] * t[2] + r[3][v] * t[3]).abs();
+            (ONE - c).max(f64x4::ZERO)
+        });
+        let p = horner(&P, x);
+        each(|v| TWO * (TWO * x[v]).sqrt() * p[v])
+    }
+
+    /// One step with the forcing parts `parts` (`[F0, F1, F2]` per axis)
+    /// at `(dm, km)`: returns the angular acceleration per axis and lane
+    /// and advances `w` and `r` by `dt`.
+    #[inline(always)]
+    pub(crate) fn step(&mut self, parts: &[[f64; 3]; 3], dm: f64, km: &Lane, dt: f64) -> [Lane; 3] {
+        // 2 log(r) = 2 H(1 - r_w) vec(r), exact where r_w < 0.
+        let h = horner(&H, each(|v| ONE - self.r[3][v]));
+        let mut factor = each(|v| TWO * h[v]);
+        for v in 0..V {
+            let rw = self.r[3][v].to_array();
+            if rw.iter().any(|&c| c < 0.0) {
+                let mut f = factor[v].to_array();
+                for l in 0..4 {
+                    if rw[l] < 0.0 {
+                        f[l] = 2.0 * exact_log_factor(self.r(4 * v + l));
+                    }
+                }
+                factor[v] = f64x4::new(f);
+            }
+        }
+        let (dmv, dtv) = (f64x4::splat(dm), f64x4::splat(dt));
+        let a: [Lane; 3] = std::array::from_fn(|ax| {
+            let [f0, f1, f2] = parts[ax];
+            let (fd, f2) = (f64x4::splat(f0 + dm * f1), f64x4::splat(f2));
+            each(|v| {
+                let rv = factor[v] * self.r[ax][v];
+                -dmv * self.w[ax][v] + km[v] * rv + (fd + km[v] * f2)
+            })
+        });
+        for ax in 0..3 {
+            for v in 0..V {
+                self.w[ax][v] += a[ax][v] * dtv;
+            }
+        }
+        self.turn(dt);
+        a
+    }
+
+    /// `r <- r * conj(exp(w dt / 2))`, then back to unit norm.
+    #[inline(always)]
+    fn turn(&mut self, dt: f64) {
+        let half = f64x4::splat(0.5 * dt);
+        let u = self.w.map(|w| w.map(|w| w * half));
+        let s = each(|v| u[0][v] * u[0][v] + u[1][v] * u[1][v] + u[2][v] * u[2][v]);
+        // sin|u| / |u| and cos|u| by their series in s = |u|^2.
+        let mut sinc = horner(&SINC, s);
+        let mut cos = horner(&COS, s);
+        for v in 0..V {
+            let sa = s[v].to_array();
+            if sa.iter().any(|&s| s > EXP_SERIES_MAX) {
+                let (mut sn, mut cs) = (sinc[v].to_array(), cos[v].to_array());
+                for l in 0..4 {
+                    if sa[l] > EXP_SERIES_MAX {
+                        let n = sa[l].sqrt();
+                        let (sin, c) = n.sin_cos();
+                        sn[l] = sin / n;
+                        cs[l] = c;
+                    }
+                }
+                sinc[v] = f64x4::new(sn);
+                cos[v] = f64x4::new(cs);
+            }
+        }
+        // e = (sinc u, cos); r * conj(e) with conj(e) = (-sinc u, cos).
+        let (one_half, half_one) = (f64x4::splat(1.5), f64x4::splat(0.5));
+        for v in 0..V {
+            let [rx, ry, rz, rw] = [self.r[0][v], self.r[1][v], self.r[2][v], self.r[3][v]];
+            let (ex, ey, ez, ew) = (
+                -sinc[v] * u[0][v],
+                -sinc[v] * u[1][v],
+                -sinc[v] * u[2][v],
+                cos[v],
+            );
+            let nx = rw * ex + rx * ew + ry * ez - rz * ey;
+            let ny = rw * ey - rx * ez + ry * ew + rz * ex;
+            let nz = rw * ez + rx * ey - ry * ex + rz * ew;
+            let nw = rw * ew - rx * ex - ry * ey - rz * ez;
+            // One Newton step of 1 / |n| from 1: |n| - 1 is of rounding size.
+            let g = one_half - half_one * (nx * nx + ny * ny + nz * nz + nw * nw);
+            self.r[0][v] = nx * g;
+            self.r[1][v] = ny * g;
+            self.r[2][v] = nz * g;
+            self.r[3][v] = nw * g;
+        }
+    }
+}
+
+const ONE: f64x4 = f64x4::splat(1.0);
+const TWO: f64x4 = f64x4::splat(2.0);
+
+/// `c[0] + c[1] x + ...` per lane (Horner).
+#[inline(always)]
+fn horner<const N: usize>(c: &[f64; N], x: Lane) -> Lane {
+    let mut p = [f64x4::splat(c[N - 1]); V];
+    for k in (0..N - 1).rev() {
+        let ck = f64x4::splat(c[k]);
+        for v in 0..V {
+            p[v] = p[v] * x[v] + ck;
+        }
+    }
+    p
+}
+
+/// `sin(sqrt(s)) / sqrt(s)`: its Taylor series in `s` to `s^4`.
+const SINC: [f64; 5] = [1.0, -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362_880.0];
+
+/// `cos(sqrt(s))`: its Taylor series in `s` to `s^5`.
+const COS: [f64; 6] = [
+    1.0,
+    -0.5,
+    1.0 / 24.0,
+    -1.0 / 720.0,
+    1.0 / 40320.0,
+    -1.0 / 3_628_800.0,
+];
+
+/// `atan2(|v|, w) / |v|` of a unit quaternion `(v, w)`, 0 where `v = 0`
+/// (method.md section 12's `log`, without its vector).
+fn exact_log_factor(r: Q) -> f64 {
+    let n = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+    if n == 0.0 { 0.0 } else { n.atan2(r[3]) / n }
+}
+
+/// Integrates `kernel` at `(dm, km[l])` for each lane: `d_rot` (radians)
+/// and, when `PEAK`, `alpha_peak` per lane. The lanes go through time in
+/// chunks of [`LANES`] (a lone pair fills a chunk with copies of itself);
+/// each lane's numbers are the same whatever chunk it is in.
+pub(crate) fn integrate<const L: usize, const PEAK: bool>(
+    kernel: &RotKernel,
+    dm: f64,
+    km: [f64; L],
+) -> ([f64; L], [f64; L]) {
+    let mut d = [0.0; L];
+    let mut peak = [0.0; L];
+    for start in (0..L).step_by(LANES) {
+        let at = |l: usize| km[(start + l).min(L - 1)];
+        let chunk = each(|v| f64x4::new(std::array::from_fn(|c| at(4 * v + c))));
+        let (dc, pc) = integrate_chunk::<PEAK>(kernel, dm, &chunk);
+        for c in 0..LANES.min(L - start) {
+            d[start + c] = dc[c];
+            peak[start + c] = pc[c];
+        }
+    }
+    (d, peak)
+}
+
+/// [`integrate`] for one chunk of lanes.
+fn integrate_chunk<const PEAK: bool>(
+    kernel: &RotKernel,
+    dm: f64,
+    km: &Lane,
+) -> ([f64; LANES], [f64; LANES]) {
+    let n = kernel.forcing.len();
+    let dt = 1.0 / (n.max(2) - 1) as f64;
+    let mut lanes = Lanes::new(kernel.start);
+    let mut err_sum = [f64x4::ZERO; V];
+    let mut a2_max = [0.0f64; LANES];
+    let half = f64x4::splat(0.5);
+    for (k, (parts, target)) in kernel.forcing.iter().zip(&kernel.target).enumerate() {
+        let theta = lanes.angle(*target);
+        let ends = k == 0 || k + 1 == n;
+        for v in 0..V {
+            err_sum[v] += if ends { half * theta[v] } else { theta[v] };
+        }
+        let a = lanes.step(parts, dm, km, dt);
+        if PEAK {
+            for v in 0..V {
+                let a2 = (a[0][v] * a[0][v] + a[1][v] * a[1][v] + a[2][v] * a[2][v]).to_array();
+                for l in 0..4 {
+                    let m = &mut a2_max[4 * v + l];
+                    // The largest, and NaN once any step is NaN.
+                    *m = if a2[l].is_nan() || m.is_nan() {
+                        f64::NAN
+                    } else {
+                        m.max(a2[l])
+                    };
+                }
+            }
+        }
+    }
+    let dt = f64x4::splat(dt);
+    let d: Vec<f64> = err_sum.iter().flat_map(|e| (*e * dt).to_array()).collect();
+    (std::array::from_fn(|l| d[l]), a2_max.map(f64::sqrt))
+}
