@@ -81,7 +81,7 @@ fn landscape_json_has_exactly_the_documented_shape() {
             .as_array()
             .expect("rows")
             .iter()
-            .all(|row| row.as_array().expect("row").iter().all(serde_json::Value::is_null))
+            .all(|row| row.as_array().expect("row").iter().all(Value::is_null))
     );
     let n = 12;
     assert_eq!(doc["dm"].as_array().expect("dm").len(), n);

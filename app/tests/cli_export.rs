@@ -290,8 +290,9 @@ fn the_mcap_export_holds_ros_trajectories_that_decode_back() {
                 let (stamp, frame, poses) = decode_path(&message.data).expect("Path");
                 assert_eq!(frame, "world");
                 assert_eq!(poses.len(), 1001);
-                for (k, (s, p)) in poses.iter().enumerate() {
+                for (k, (s, p, q)) in poses.iter().enumerate() {
                     assert_eq!(*p, y[k], "pose {k}");
+                    assert_eq!(*q, [0.0, 0.0, 0.0, 1.0], "no orientation: the identity");
                     assert_eq!(*s, stamp + (t[k] * 1e9).round() as i64);
                 }
                 seen.push(topic);
@@ -311,6 +312,7 @@ fn the_mcap_export_holds_ros_trajectories_that_decode_back() {
                 for (k, tk) in traj.t.iter().enumerate() {
                     assert!((tk - t[k]).abs() <= 1e-9, "time_from_start {k}");
                 }
+                assert!(traj.orientation.is_none(), "reach10 has no orientation");
                 seen.push(topic);
             }
             _ => {}
@@ -357,4 +359,82 @@ fn the_csv_of_a_generalised_path_is_in_real_time() {
     assert_eq!(&first[6..9], ["", "", ""]);
     let last: Vec<&str> = lines[1001].split(',').collect();
     assert!((last[2].parse::<f64>().expect("t") - 4.0).abs() < 1e-12);
+}
+
+#[test]
+fn the_ros_trajectories_of_an_oriented_path_carry_its_orientation() {
+    // The planted sample's demos have orientations: the Path's poses and
+    // the MultiDOFJointTrajectory's rotations are the DMP's, its angular
+    // velocity and acceleration the unit-time ones over the duration.
+    let (mcap_path, json_path) = (tmp("oriented_ros.mcap"), tmp("oriented_ros.json"));
+    let planted = repo().join("assets/planted8.mcap").display().to_string();
+    let args = |out: &str| -> Vec<String> {
+        [
+            "regen",
+            &planted,
+            "--dm",
+            "25",
+            "--km",
+            "156.25",
+            "--demo",
+            "1",
+            "--goal-orientation",
+            "0.3",
+            "0.1",
+            "0.2",
+            "0.9",
+            "--duration",
+            "2.0",
+            "--out",
+            out,
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect()
+    };
+    run(&args(&mcap_path));
+    run(&args(&json_path));
+    let doc = json(&json_path);
+    let q_doc: Vec<Vec<f64>> = doc["rollout"]["q"]
+        .as_array()
+        .expect("rollout.q")
+        .iter()
+        .map(|q| {
+            q.as_array()
+                .expect("q")
+                .iter()
+                .map(|c| c.as_f64().expect("c"))
+                .collect()
+        })
+        .collect();
+    let bytes = std::fs::read(&mcap_path).expect("mcap");
+    let mut seen = 0;
+    for message in mcap::MessageStream::new(&bytes).expect("mcap") {
+        let message = message.expect("message");
+        let schema = message.channel.schema.as_ref().expect("schema");
+        match schema.name.as_str() {
+            PATH_NAME => {
+                let (_, _, poses) = decode_path(&message.data).expect("Path");
+                for (k, (_, _, q)) in poses.iter().enumerate() {
+                    assert_eq!(q.to_vec(), q_doc[k], "pose {k}'s orientation");
+                }
+                seen += 1;
+            }
+            MULTI_DOF_NAME => {
+                let traj = decode_multi_dof(&message.data).expect("trajectory");
+                let o = traj.orientation.expect("an orientation");
+                for (k, q) in o.q.iter().enumerate() {
+                    assert_eq!(q.to_vec(), q_doc[k], "rotation {k}");
+                }
+                let speed = |w: &[f64; 3]| w.iter().map(|c| c * c).sum::<f64>().sqrt();
+                let fastest = o.w.iter().map(speed).fold(0.0, f64::max);
+                assert!(fastest > 0.1, "the angular velocity is there: {fastest}");
+                let norm = |q: &[f64; 4]| q.iter().map(|c| c * c).sum::<f64>().sqrt();
+                assert!(o.q.iter().all(|q| (norm(q) - 1.0).abs() < 1e-12));
+                seen += 1;
+            }
+            _ => {}
+        }
+    }
+    assert_eq!(seen, 2);
 }

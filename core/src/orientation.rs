@@ -208,10 +208,13 @@ pub fn rollout_forcing(
         w: Vec::with_capacity(n),
         a: Vec::with_capacity(n),
     };
-    for f in forcing {
-        // q = conj(r) * q_g.
-        out.q
-            .push(rotation::mul(rotation::conj(lanes.r(0)), target.goal));
+    for (k, f) in forcing.iter().enumerate() {
+        // q = conj(r) * q_g; the first is the start itself.
+        out.q.push(if k == 0 {
+            target.start
+        } else {
+            rotation::mul(rotation::conj(lanes.r(0)), target.goal)
+        });
         out.w.push(lanes.w(0));
         let parts = f.map(|v| [v, 0.0, 0.0]);
         let a = lanes.step(&parts, dm, &[wide::f64x4::splat(km); 4], dt);

@@ -75,9 +75,9 @@ pub fn build_model<'a>(
             n => format!("{n} demos ({first}, ...)"),
         };
         notices.push(Notice::info(format!(
-            "{which}: the orientation is the identity throughout while the position moves (a \
-             tracker that sends no rotation): no orientation DMP for them (docs/method.md \
-             section 12)"
+            "{which}: the orientation is the same throughout while the position moves (a \
+             tracker that sends no rotation): no orientation DMP for them, and the \
+             orientation views are off (docs/method.md section 12)"
         )));
     }
     if prepared.len() == 1 {

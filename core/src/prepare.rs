@@ -95,7 +95,7 @@ pub struct PreparedDemo {
     pub ydd: Vec<Vec3>,
     /// The orientation (method.md section 12), when the recording has one
     /// that rotates (`None` for a stream without orientation, and for one
-    /// whose orientation is the identity throughout: a tracker that sends
+    /// whose orientation is one and the same throughout: a tracker that sends
     /// no rotation).
     #[serde(default)]
     pub orientation: Option<PreparedOrientation>,
@@ -161,7 +161,8 @@ fn zip3(cols: [Vec<f64>; 3]) -> Vec<Vec3> {
 }
 
 /// The demo's orientation on `grids` (method.md section 12), `None` when
-/// it has none, or only the identity (a tracker that sends no rotation).
+/// it has none, or one constant orientation (a tracker that sends no
+/// rotation).
 fn prepare_orientation(
     raw: &RawDemo,
     samples: usize,
@@ -176,7 +177,12 @@ fn prepare_orientation(
         .filter_map(|&i| all.get(i))
         .map(crate::geom::xyzw)
         .collect();
-    if qs.len() != samples || qs.iter().all(|q| *q == crate::rotation::IDENTITY) {
+    // Exactly one orientation throughout (the identity, or what the up
+    // axis made of it, either sign): a tracker that sends no rotation.
+    let constant = qs
+        .first()
+        .is_some_and(|&f| qs.iter().all(|q| *q == f || q.map(|c| -c) == f));
+    if qs.len() != samples || constant {
         return Ok(None);
     }
     PreparedOrientation::new(&qs, grids).map(Some)

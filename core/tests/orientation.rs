@@ -154,27 +154,69 @@ fn every_pose_schema_keeps_its_orientation_and_a_point_has_none() {
 }
 
 #[test]
-fn an_unusable_quaternion_leaves_the_demo_without_orientation() {
-    // All-zero quaternions (an unset field) are no orientation, not the
-    // identity; the positions still load.
-    let bytes = mcap(
-        ("geometry_msgs/msg/PoseStamped", "ros2msg", "cdr"),
-        "/hand",
-        &|t, p, q| {
-            let q = if t == EPOCH + 3 * PERIOD { [0.0; 4] } else { q };
-            ros2::encode_oriented_pose_stamped(t, "world", p, q)
-        },
+fn an_unusable_quaternion_is_an_error_naming_the_sample() {
+    // method.md section 12: a zero or non-finite quaternion is an error like
+    // a non-finite position, naming file, topic and sample.
+    let with_zero_at = |bad: i64, q_bad: [f64; 4]| {
+        mcap(
+            ("geometry_msgs/msg/PoseStamped", "ros2msg", "cdr"),
+            "/hand",
+            &move |t, p, q| {
+                let q = if t == EPOCH + bad * PERIOD { q_bad } else { q };
+                ros2::encode_oriented_pose_stamped(t, "world", p, q)
+            },
+        )
+    };
+    let bytes = with_zero_at(3, [0.0; 4]);
+    let err = load_bytes("zero.mcap", &bytes).expect_err("a zero quaternion");
+    let said = err.to_string();
+    assert!(
+        said.contains("zero.mcap") && said.contains("/hand") && said.contains("sample 3"),
+        "{said}"
     );
-    let loaded = load_bytes("zero.mcap", &bytes).expect("loads");
+    assert!(said.contains("--drop-bad-orientation"), "{said}");
+    let nan = with_zero_at(5, [f64::NAN, 0.0, 0.0, 1.0]);
+    let said = load_bytes("nan.mcap", &nan).expect_err("NaN").to_string();
+    assert!(
+        said.contains("sample 5") && said.contains("orientation"),
+        "{said}"
+    );
+    // The option beyond the method: the positions load without orientation
+    // and the user is told.
+    let options = LoadOptions {
+        drop_bad_orientation: true,
+        ..LoadOptions::default()
+    };
+    let loaded = load_bytes_with("zero.mcap", &bytes, &options).expect("loads");
     let demo = &loaded.demos[0];
     assert_eq!(demo.positions.len(), N);
     assert!(demo.orientations.is_none());
-    // And the user is told.
     assert!(
         loaded
             .warnings
             .iter()
             .any(|w| w.contains("zero.mcap: /hand: 1 of 30 samples have no usable orientation")),
+        "{:?}",
+        loaded.warnings
+    );
+}
+
+#[test]
+fn a_stream_of_zero_quaternions_has_no_orientation_and_says_so() {
+    // A source that sends no rotation (ROS 1's default quaternion is all
+    // zero): no orientation, said, the positions loaded.
+    let bytes = mcap(
+        ("geometry_msgs/msg/PoseStamped", "ros2msg", "cdr"),
+        "/hand",
+        &|t, p, _| ros2::encode_oriented_pose_stamped(t, "world", p, [0.0; 4]),
+    );
+    let loaded = load_bytes("unset.mcap", &bytes).expect("loads");
+    assert!(loaded.demos[0].orientations.is_none());
+    assert!(
+        loaded
+            .warnings
+            .iter()
+            .any(|w| w.contains("every orientation is the zero quaternion")),
         "{:?}",
         loaded.warnings
     );

@@ -120,6 +120,11 @@ pub struct LoadArgs {
     /// of each reach-and-return trial.
     #[arg(long, default_value = "all", value_parser = SegmentPick::parse, value_name = "WHICH")]
     pub segments: SegmentPick,
+    /// An option beyond the method: a stream with a zero or non-finite
+    /// quaternion keeps its positions without orientation, with a warning,
+    /// instead of the error naming the sample (method.md section 12).
+    #[arg(long)]
+    pub drop_bad_orientation: bool,
 }
 
 /// Length units on the command line.
@@ -175,6 +180,7 @@ impl LoadArgs {
                 keep: SegmentPick::All,
                 ..self.segment_settings()
             },
+            drop_bad_orientation: self.drop_bad_orientation,
         }
     }
 

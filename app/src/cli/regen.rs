@@ -13,7 +13,7 @@ use dmpscope_core::io::dmp_doc::{DocContext, dmp_document};
 use dmpscope_core::io::export::{
     ExportPath, ROLE_REGENERATED, TopicNames, TrajectoryExport, demo_paths, write_export_mcap,
 };
-use dmpscope_core::io::ros_traj::TimedPath;
+use dmpscope_core::io::ros_traj::{TimedOrientation, TimedPath};
 use dmpscope_core::text::{pad_right, width};
 use dmpscope_core::{
     Generalised, Model, Primitive, RawDemo, Scaling, Skill, Target, orientation, rotation,
@@ -429,6 +429,7 @@ fn write_mcap(
                 y: arrays(&r.out.unit.y),
                 v: arrays(&r.out.v),
                 a: arrays(&r.out.a),
+                orientation: timed_orientation(&r.out),
             },
         });
     }
@@ -465,6 +466,22 @@ fn write_mcap(
         out.display()
     );
     Ok(())
+}
+
+/// A generalised run's orientation in real time (unit-time rates over the
+/// run's duration), for the ROS trajectories.
+fn timed_orientation(out: &Generalised) -> Option<TimedOrientation> {
+    let o = out.orientation.as_ref()?;
+    let duration = out.t.last().copied().filter(|d| *d > 0.0)?;
+    Some(TimedOrientation {
+        q: o.q.clone(),
+        w: o.w.iter().map(|w| w.map(|c| c / duration)).collect(),
+        alpha: o
+            .a
+            .iter()
+            .map(|a| a.map(|c| c / (duration * duration)))
+            .collect(),
+    })
 }
 
 impl Args {

@@ -30,6 +30,12 @@ pub(crate) struct Stream {
     /// Each sample's orientation, already in dmpscope's z-up frame; `None`
     /// where the message has none or an unusable one.
     orientations: Vec<Option<Quat>>,
+    /// The first unusable orientation (zero or not finite): its message's
+    /// index in the file and its value.
+    first_bad_orientation: Option<(usize, [f64; 4])>,
+    /// How many orientations were unusable, and how many of them exactly
+    /// zero.
+    bad_orientations: (usize, usize),
 }
 
 /// One stream of messages: the channels of one topic and schema (a merged
@@ -329,6 +335,11 @@ impl<'o> Collector<'o> {
                 .positions
                 .push(options.up.to_z_up(sample.position).into());
             let orientation = sample.orientation.and_then(crate::geom::quat_from_xyzw);
+            if let (Some(q), None) = (sample.orientation, orientation) {
+                stream.first_bad_orientation.get_or_insert((index, q));
+                stream.bad_orientations.0 += 1;
+                stream.bad_orientations.1 += usize::from(q == [0.0; 4]);
+            }
             stream
                 .orientations
                 .push(orientation.map(|q| options.up.orientation_to_z_up(q)));
@@ -403,27 +414,22 @@ impl<'o> Collector<'o> {
                 _ => true,
             });
         }
-        let demos: Vec<RawDemo> = streams
-            .into_iter()
-            .filter(|(_, _, s)| !s.positions.is_empty())
-            .map(|(topic, key, s)| {
-                let given = key.is_none().then(|| names.get(&topic).cloned()).flatten();
-                let unusable = s.orientations.iter().filter(|q| q.is_none()).count();
-                let n = s.orientations.len();
-                let mut demo = finish_stream(label, &file_name, topic, key, s);
-                if unusable > 0 && unusable < n {
-                    warnings.push(format!(
-                        "{label}: {}: {unusable} of {n} samples have no usable orientation \
-                         (zero or not finite): the demo has none",
-                        demo.topic
-                    ));
-                }
-                if let Some(name) = given {
-                    demo.name = name;
-                }
-                demo
-            })
-            .collect();
+        let mut demos: Vec<RawDemo> = Vec::new();
+        for (topic, key, s) in streams {
+            if s.positions.is_empty() {
+                continue;
+            }
+            let given = key.is_none().then(|| names.get(&topic).cloned()).flatten();
+            let said = bad_orientations(label, &topic, key.as_deref(), &s, options)?;
+            let mut demo = finish_stream(label, &file_name, topic, key, s);
+            if let Some(said) = said {
+                warnings.push(said);
+            }
+            if let Some(name) = given {
+                demo.name = name;
+            }
+            demos.push(demo);
+        }
         let mut skipped = c.skipped;
         skipped.sort();
         let unmatched: Vec<&String> = options
@@ -532,6 +538,48 @@ fn cut_short(demos: &[RawDemo]) -> String {
 
 /// Chooses the time source of one stream (method.md section 2.1): header
 /// stamps, unless one is missing or all are zero, then log time.
+/// What a stream's unusable orientations (zero or not finite) mean
+/// (method.md section 12): none, nothing to say; every one exactly zero, a
+/// source without rotation (ROS 1's default quaternion), said; else the
+/// error naming file, topic and the first such sample, or with
+/// `drop_bad_orientation` a warning and a demo without orientation.
+fn bad_orientations(
+    label: &str,
+    topic: &str,
+    key: Option<&str>,
+    s: &Stream,
+    options: &LoadOptions,
+) -> Result<Option<String>> {
+    let Some((index, q)) = s.first_bad_orientation else {
+        return Ok(None);
+    };
+    let source = key.map_or_else(|| topic.to_owned(), |k| format!("{topic}:{k}"));
+    let (bad, zero) = s.bad_orientations;
+    let n = s.orientations.len();
+    if zero == n {
+        return Ok(Some(format!(
+            "{label}: {source}: every orientation is the zero quaternion (a source that \
+             sends no rotation): the demo has no orientation"
+        )));
+    }
+    if options.drop_bad_orientation {
+        return Ok(Some(format!(
+            "{label}: {source}: {bad} of {n} samples have no usable orientation (zero or not \
+             finite, the first at sample {index}: {q:?}): the demo has none \
+             (--drop-bad-orientation)"
+        )));
+    }
+    Err(Error::NonFinite {
+        at: Location::file(label).topic(source).sample(index),
+        field: if q.iter().all(|c| c.is_finite()) {
+            "orientation (a zero quaternion; --drop-bad-orientation loads the positions \
+             without orientation)"
+        } else {
+            "orientation (--drop-bad-orientation loads the positions without orientation)"
+        },
+    })
+}
+
 fn finish_stream(
     label: &str,
     file_name: &str,

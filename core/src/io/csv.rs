@@ -33,6 +33,7 @@ pub fn load_csv(label: &str, text: &str) -> Result<RawDemo> {
     let mut stamps_ns = Vec::new();
     let mut positions = Vec::new();
     let mut orientations = Vec::new();
+    let mut first_zero: Option<usize> = None;
     let mut width = None;
     let mut first = true;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
@@ -73,9 +74,24 @@ pub fn load_csv(label: &str, text: &str) -> Result<RawDemo> {
         }
         stamps_ns.push(t_ns as i64);
         positions.push(Vec3::new(values[1], values[2], values[3]));
-        if let [.., qx, qy, qz, qw] = values[..] {
-            orientations.push(quat_from_xyzw([qx, qy, qz, qw]));
+        if let (Some(8), [.., qx, qy, qz, qw]) = (width, &values[..]) {
+            let q = quat_from_xyzw([*qx, *qy, *qz, *qw]);
+            if q.is_none() && first_zero.is_none() {
+                first_zero = Some(row);
+            }
+            orientations.push(q);
         }
+    }
+    // A zero quaternion (method.md section 12) is an error, unless every
+    // row's is zero: columns that hold no rotation.
+    let all_zero = orientations.iter().all(Option::is_none);
+    if let Some(row) = first_zero
+        && !all_zero
+    {
+        return Err(Error::NonFinite {
+            at: at().sample(row),
+            field: "orientation (a zero quaternion)",
+        });
     }
     if positions.is_empty() {
         return Err(Error::Decode {

@@ -84,6 +84,10 @@ pub struct LoadOptions {
     pub trim_rest: bool,
     /// What a rest is, for the end rests (the segmentation's settings).
     pub rest: crate::segment::SegmentSettings,
+    /// An option beyond the method: a stream with an unusable orientation
+    /// (zero or not finite) keeps its positions without orientation, with
+    /// a warning, instead of the method's error (method.md section 12).
+    pub drop_bad_orientation: bool,
 }
 
 /// What one file gave.

@@ -80,7 +80,38 @@ pub struct TimedPath {
     pub v: Vec<[f64; 3]>,
     /// Accelerations, m/s^2.
     pub a: Vec<[f64; 3]>,
+    /// The orientation along the path (method.md section 12), where the
+    /// DMP has one; else the messages carry the identity and no turn.
+    pub orientation: Option<TimedOrientation>,
 }
+
+/// The orientation along a [`TimedPath`], one entry per point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimedOrientation {
+    /// Unit quaternions `[x, y, z, w]`.
+    pub q: Vec<[f64; 4]>,
+    /// Angular velocities, rad/s (space frame).
+    pub w: Vec<[f64; 3]>,
+    /// Angular accelerations, rad/s^2.
+    pub alpha: Vec<[f64; 3]>,
+}
+
+impl TimedPath {
+    /// Point `k`'s orientation, angular velocity and acceleration: the
+    /// identity and zeros without an orientation.
+    fn turn_at(&self, k: usize) -> ([f64; 4], [f64; 3], [f64; 3]) {
+        match &self.orientation {
+            Some(o) => (
+                o.q.get(k).copied().unwrap_or(IDENTITY),
+                o.w.get(k).copied().unwrap_or([0.0; 3]),
+                o.alpha.get(k).copied().unwrap_or([0.0; 3]),
+            ),
+            None => (IDENTITY, [0.0; 3], [0.0; 3]),
+        }
+    }
+}
+
+const IDENTITY: [f64; 4] = [0.0, 0.0, 0.0, 1.0];
 
 /// Seconds and nanoseconds of a stamp, saturated together to what an
 /// `int32` of seconds holds.
@@ -111,27 +142,30 @@ fn vector(w: &mut CdrWriter, v: [f64; 3]) {
     }
 }
 
-fn identity_quaternion(w: &mut CdrWriter) {
-    vector(w, [0.0; 3]);
-    w.f64(1.0);
+fn quaternion(w: &mut CdrWriter, q: [f64; 4]) {
+    for c in q {
+        w.f64(c);
+    }
 }
 
-/// `nav_msgs/msg/Path`: each pose stamped at its time, identity orientation.
+/// `nav_msgs/msg/Path`: each pose stamped at its time, with its
+/// orientation (the identity where the path has none).
 pub fn encode_path(path: &TimedPath) -> Vec<u8> {
     let mut w = CdrWriter::new();
     header(&mut w, path.stamp_ns, &path.frame_id);
     w.u32(path.y.len() as u32);
-    for (t, y) in path.t.iter().zip(&path.y) {
+    for (k, (t, y)) in path.t.iter().zip(&path.y).enumerate() {
         header(&mut w, path.stamp_ns + seconds_ns(*t), &path.frame_id);
         vector(&mut w, *y);
-        identity_quaternion(&mut w);
+        quaternion(&mut w, path.turn_at(k).0);
     }
     w.finish()
 }
 
 /// `trajectory_msgs/msg/MultiDOFJointTrajectory`: one joint, a point per
-/// sample with its translation, linear velocity and acceleration (angular
-/// parts zero) and `time_from_start`.
+/// sample with its translation and rotation, linear and angular velocity
+/// and acceleration (angular parts zero where the path has no orientation)
+/// and `time_from_start`.
 pub fn encode_multi_dof(path: &TimedPath) -> Vec<u8> {
     let mut w = CdrWriter::new();
     header(&mut w, path.stamp_ns, &path.frame_id);
@@ -139,15 +173,16 @@ pub fn encode_multi_dof(path: &TimedPath) -> Vec<u8> {
     w.string(&path.joint);
     w.u32(path.y.len() as u32);
     for k in 0..path.y.len() {
+        let (q, omega, alpha) = path.turn_at(k);
         w.u32(1);
         vector(&mut w, path.y[k]);
-        identity_quaternion(&mut w);
+        quaternion(&mut w, q);
         w.u32(1);
         vector(&mut w, path.v[k]);
-        vector(&mut w, [0.0; 3]);
+        vector(&mut w, omega);
         w.u32(1);
         vector(&mut w, path.a[k]);
-        vector(&mut w, [0.0; 3]);
+        vector(&mut w, alpha);
         let (sec, nanosec) = split_ns(seconds_ns(path.t[k]));
         w.i32(sec);
         w.u32(nanosec);
@@ -176,8 +211,8 @@ fn read_len(r: &mut CdrReader<'_>, what: &str, left: usize) -> Result<usize, Str
 }
 
 /// A decoded `nav_msgs/msg/Path`: its stamp, frame and
-/// `(stamp_ns, position)` per pose.
-pub type DecodedPath = (i64, String, Vec<(i64, [f64; 3])>);
+/// `(stamp_ns, position, orientation)` per pose.
+pub type DecodedPath = (i64, String, Vec<(i64, [f64; 3], [f64; 4])>);
 
 /// Decodes [`encode_path`].
 pub fn decode_path(message: &[u8]) -> Result<DecodedPath, String> {
@@ -188,13 +223,14 @@ pub fn decode_path(message: &[u8]) -> Result<DecodedPath, String> {
     for _ in 0..n {
         let (s, _) = read_header(&mut r)?;
         let p = read_vector(&mut r, "pose.position")?;
-        let _q = [r.f64("q")?, r.f64("q")?, r.f64("q")?, r.f64("q")?];
-        poses.push((s, p));
+        let q = [r.f64("q")?, r.f64("q")?, r.f64("q")?, r.f64("q")?];
+        poses.push((s, p, q));
     }
     Ok((stamp, frame, poses))
 }
 
-/// Decodes [`encode_multi_dof`] into a [`TimedPath`] (one joint).
+/// Decodes [`encode_multi_dof`] into a [`TimedPath`] (one joint; no
+/// orientation where every rotation is the identity without a turn).
 pub fn decode_multi_dof(message: &[u8]) -> Result<TimedPath, String> {
     let mut r = CdrReader::new(message)?;
     let (stamp_ns, frame_id) = read_header(&mut r)?;
@@ -215,6 +251,12 @@ pub fn decode_multi_dof(message: &[u8]) -> Result<TimedPath, String> {
         y: Vec::with_capacity(n),
         v: Vec::with_capacity(n),
         a: Vec::with_capacity(n),
+        orientation: None,
+    };
+    let mut turn = TimedOrientation {
+        q: Vec::with_capacity(n),
+        w: Vec::with_capacity(n),
+        alpha: Vec::with_capacity(n),
     };
     for _ in 0..n {
         let one = |what: &str, r: &mut CdrReader<'_>| -> Result<(), String> {
@@ -226,17 +268,24 @@ pub fn decode_multi_dof(message: &[u8]) -> Result<TimedPath, String> {
         };
         one("transforms", &mut r)?;
         out.y.push(read_vector(&mut r, "translation")?);
-        let _q = [r.f64("q")?, r.f64("q")?, r.f64("q")?, r.f64("q")?];
+        turn.q
+            .push([r.f64("q")?, r.f64("q")?, r.f64("q")?, r.f64("q")?]);
         one("velocities", &mut r)?;
         out.v.push(read_vector(&mut r, "velocity.linear")?);
-        read_vector(&mut r, "velocity.angular")?;
+        turn.w.push(read_vector(&mut r, "velocity.angular")?);
         one("accelerations", &mut r)?;
         out.a.push(read_vector(&mut r, "acceleration.linear")?);
-        read_vector(&mut r, "acceleration.angular")?;
+        turn.alpha
+            .push(read_vector(&mut r, "acceleration.angular")?);
         let sec = r.i32("time_from_start.sec")?;
         let nanosec = r.u32("time_from_start.nanosec")?;
         out.t
             .push((i64::from(sec) * 1_000_000_000 + i64::from(nanosec)) as f64 * 1e-9);
     }
+    // The identity without a turn is what a path without orientation
+    // writes: read back as none.
+    let still = turn.q.iter().all(|q| *q == IDENTITY)
+        && turn.w.iter().chain(&turn.alpha).all(|v| *v == [0.0; 3]);
+    out.orientation = (!still).then_some(turn);
     Ok(out)
 }
