@@ -202,7 +202,7 @@ pub fn rollout_forcing(
     use crate::orientation_kernel::{Lanes, Start};
     let n = forcing.len();
     let dt = 1.0 / (n.max(2) - 1) as f64;
-    let mut lanes = Lanes::new(Start::new(target.start, target.w0, target.goal));
+    let mut lanes = Lanes::<1>::new(Start::new(target.start, target.w0, target.goal));
     let mut out = OrientationRollout {
         q: Vec::with_capacity(n),
         w: Vec::with_capacity(n),
@@ -217,7 +217,7 @@ pub fn rollout_forcing(
         });
         out.w.push(lanes.w(0));
         let parts = f.map(|v| [v, 0.0, 0.0]);
-        let a = lanes.step(&parts, dm, &[wide::f64x4::splat(km); 4], dt);
+        let a = lanes.step(&parts, dm, &[wide::f64x4::splat(km)], dt);
         out.a.push(a.map(|v| v[0].as_array()[0]));
     }
     out

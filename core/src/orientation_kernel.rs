@@ -119,32 +119,30 @@ impl RotKernel {
     }
 }
 
-/// Vectors of four `f64` integrated together: enough independent work to
-/// hide the latency of the polynomials' chains, few enough that the state
-/// stays in registers.
-const V: usize = 4;
+/// Vectors of four `f64` a landscape integrates together: enough
+/// independent work to hide the latency of the polynomials' chains, few
+/// enough that the state stays in registers. A lone pair (an operating
+/// point, a path) takes one vector; a lane's numbers do not depend on it.
+const V_LANDSCAPE: usize = 4;
 
-/// Lanes integrated together.
-pub(crate) const LANES: usize = 4 * V;
+/// A value per lane: `V` vectors of four.
+pub(crate) type Lane<const V: usize> = [f64x4; V];
 
-/// A value per lane.
-pub(crate) type Lane = [f64x4; V];
-
-/// The state of [`LANES`] orientation rollouts that share D/M.
-pub(crate) struct Lanes {
+/// The state of `4 V` orientation rollouts that share D/M.
+pub(crate) struct Lanes<const V: usize> {
     /// The rotation to go per component.
-    r: [Lane; 4],
+    r: [Lane<V>; 4],
     /// The angular velocity per axis.
-    w: [Lane; 3],
+    w: [Lane<V>; 3],
 }
 
 /// `f` of each vector of lanes.
 #[inline(always)]
-fn each(f: impl Fn(usize) -> f64x4) -> Lane {
+fn each<const V: usize>(f: impl Fn(usize) -> f64x4) -> Lane<V> {
     std::array::from_fn(f)
 }
 
-impl Lanes {
+impl<const V: usize> Lanes<V> {
     /// Every lane at `start`.
     pub(crate) fn new(start: Start) -> Self {
         Self {
@@ -166,10 +164,10 @@ impl Lanes {
     /// The angle `2 acos(min(1, |q . q_raw|))` per lane, `target` being
     /// `q_g * conj(q_raw)`.
     #[inline(always)]
-    pub(crate) fn angle(&self, target: Q) -> Lane {
+    pub(crate) fn angle(&self, target: Q) -> Lane<V> {
         let t = target.map(f64x4::splat);
         let r = &self.r;
-        let x = each(|v| {
+        let x = each::<V>(|v| {
             let c = (r[0][v] * t[0] + r[1][v] * t[1] + r[2][v] * t[2] + r[3][v] * t[3]).abs();
             (ONE - c).max(f64x4::ZERO)
         });
@@ -181,10 +179,16 @@ impl Lanes {
     /// at `(dm, km)`: returns the angular acceleration per axis and lane
     /// and advances `w` and `r` by `dt`.
     #[inline(always)]
-    pub(crate) fn step(&mut self, parts: &[[f64; 3]; 3], dm: f64, km: &Lane, dt: f64) -> [Lane; 3] {
+    pub(crate) fn step(
+        &mut self,
+        parts: &[[f64; 3]; 3],
+        dm: f64,
+        km: &Lane<V>,
+        dt: f64,
+    ) -> [Lane<V>; 3] {
         // 2 log(r) = 2 H(1 - r_w) vec(r), exact where r_w < 0.
-        let h = horner(&H, each(|v| ONE - self.r[3][v]));
-        let mut factor = each(|v| TWO * h[v]);
+        let h = horner(&H, each::<V>(|v| ONE - self.r[3][v]));
+        let mut factor = each::<V>(|v| TWO * h[v]);
         for v in 0..V {
             let rw = self.r[3][v].to_array();
             if rw.iter().any(|&c| c < 0.0) {
@@ -198,7 +202,7 @@ impl Lanes {
             }
         }
         let (dmv, dtv) = (f64x4::splat(dm), f64x4::splat(dt));
-        let a: [Lane; 3] = std::array::from_fn(|ax| {
+        let a: [Lane<V>; 3] = std::array::from_fn(|ax| {
             let [f0, f1, f2] = parts[ax];
             let (fd, f2) = (f64x4::splat(f0 + dm * f1), f64x4::splat(f2));
             each(|v| {
@@ -220,7 +224,7 @@ impl Lanes {
     fn turn(&mut self, dt: f64) {
         let half = f64x4::splat(0.5 * dt);
         let u = self.w.map(|w| w.map(|w| w * half));
-        let s = each(|v| u[0][v] * u[0][v] + u[1][v] * u[1][v] + u[2][v] * u[2][v]);
+        let s = each::<V>(|v| u[0][v] * u[0][v] + u[1][v] * u[1][v] + u[2][v] * u[2][v]);
         // sin|u| / |u| and cos|u| by their series in s = |u|^2.
         let mut sinc = horner(&SINC, s);
         let mut cos = horner(&COS, s);
@@ -269,7 +273,7 @@ const TWO: f64x4 = f64x4::splat(2.0);
 
 /// `c[0] + c[1] x + ...` per lane (Horner).
 #[inline(always)]
-fn horner<const N: usize>(c: &[f64; N], x: Lane) -> Lane {
+fn horner<const N: usize, const V: usize>(c: &[f64; N], x: Lane<V>) -> Lane<V> {
     let mut p = [f64x4::splat(c[N - 1]); V];
     for k in (0..N - 1).rev() {
         let ck = f64x4::splat(c[k]);
@@ -309,13 +313,26 @@ pub(crate) fn integrate<const L: usize, const PEAK: bool>(
     dm: f64,
     km: [f64; L],
 ) -> ([f64; L], [f64; L]) {
+    if L >= 4 * V_LANDSCAPE {
+        integrate_in::<L, PEAK, V_LANDSCAPE>(kernel, dm, km)
+    } else {
+        integrate_in::<L, PEAK, 1>(kernel, dm, km)
+    }
+}
+
+/// [`integrate`] in chunks of `4 V` lanes.
+fn integrate_in<const L: usize, const PEAK: bool, const V: usize>(
+    kernel: &RotKernel,
+    dm: f64,
+    km: [f64; L],
+) -> ([f64; L], [f64; L]) {
     let mut d = [0.0; L];
     let mut peak = [0.0; L];
-    for start in (0..L).step_by(LANES) {
+    for start in (0..L).step_by(4 * V) {
         let at = |l: usize| km[(start + l).min(L - 1)];
-        let chunk = each(|v| f64x4::new(std::array::from_fn(|c| at(4 * v + c))));
-        let (dc, pc) = integrate_chunk::<PEAK>(kernel, dm, &chunk);
-        for c in 0..LANES.min(L - start) {
+        let chunk = each::<V>(|v| f64x4::new(std::array::from_fn(|c| at(4 * v + c))));
+        let (dc, pc) = integrate_chunk::<PEAK, V>(kernel, dm, &chunk);
+        for c in 0..(4 * V).min(L - start) {
             d[start + c] = dc[c];
             peak[start + c] = pc[c];
         }
@@ -323,17 +340,18 @@ pub(crate) fn integrate<const L: usize, const PEAK: bool>(
     (d, peak)
 }
 
-/// [`integrate`] for one chunk of lanes.
-fn integrate_chunk<const PEAK: bool>(
+/// [`integrate`] for one chunk of `4 V` lanes: `d_rot` and `alpha_peak`
+/// per lane.
+fn integrate_chunk<const PEAK: bool, const V: usize>(
     kernel: &RotKernel,
     dm: f64,
-    km: &Lane,
-) -> ([f64; LANES], [f64; LANES]) {
+    km: &Lane<V>,
+) -> (Vec<f64>, Vec<f64>) {
     let n = kernel.forcing.len();
     let dt = 1.0 / (n.max(2) - 1) as f64;
-    let mut lanes = Lanes::new(kernel.start);
+    let mut lanes = Lanes::<V>::new(kernel.start);
     let mut err_sum = [f64x4::ZERO; V];
-    let mut a2_max = [0.0f64; LANES];
+    let mut a2_max = vec![0.0f64; 4 * V];
     let half = f64x4::splat(0.5);
     for (k, (parts, target)) in kernel.forcing.iter().zip(&kernel.target).enumerate() {
         let theta = lanes.angle(*target);
@@ -358,6 +376,6 @@ fn integrate_chunk<const PEAK: bool>(
         }
     }
     let dt = f64x4::splat(dt);
-    let d: Vec<f64> = err_sum.iter().flat_map(|e| (*e * dt).to_array()).collect();
-    (std::array::from_fn(|l| d[l]), a2_max.map(f64::sqrt))
+    let d = err_sum.iter().flat_map(|e| (*e * dt).to_array()).collect();
+    (d, a2_max.into_iter().map(f64::sqrt).collect())
 }

@@ -43,7 +43,8 @@ fn unusable_demos_are_skipped_with_a_warning_or_stop_the_build() {
     assert!(built.notices[0].text.contains("short.mcap:/short"));
     assert_eq!(built.notices[1].level, Level::Info);
     assert!(
-        built.notices[1].text.contains("10 demos") && built.notices[1].text.contains("the same throughout")
+        built.notices[1].text.contains("10 demos")
+            && built.notices[1].text.contains("the same throughout")
     );
     let err = build_model(&demos, &prep, Default::default(), Unusable::Fail).expect_err("fail");
     assert!(matches!(err, Error::TooFewSamples { .. }), "{err}");

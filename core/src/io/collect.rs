@@ -36,6 +36,8 @@ pub(crate) struct Stream {
     /// How many orientations were unusable, and how many of them exactly
     /// zero.
     bad_orientations: (usize, usize),
+    /// How many samples carried no orientation at all.
+    missing_orientations: usize,
 }
 
 /// One stream of messages: the channels of one topic and schema (a merged
@@ -335,6 +337,7 @@ impl<'o> Collector<'o> {
                 .positions
                 .push(options.up.to_z_up(sample.position).into());
             let orientation = sample.orientation.and_then(crate::geom::quat_from_xyzw);
+            stream.missing_orientations += usize::from(sample.orientation.is_none());
             if let (Some(q), None) = (sample.orientation, orientation) {
                 stream.first_bad_orientation.get_or_insert((index, q));
                 stream.bad_orientations.0 += 1;
@@ -550,12 +553,18 @@ fn bad_orientations(
     s: &Stream,
     options: &LoadOptions,
 ) -> Result<Option<String>> {
-    let Some((index, q)) = s.first_bad_orientation else {
-        return Ok(None);
-    };
     let source = key.map_or_else(|| topic.to_owned(), |k| format!("{topic}:{k}"));
-    let (bad, zero) = s.bad_orientations;
     let n = s.orientations.len();
+    let missing = s.missing_orientations;
+    let Some((index, q)) = s.first_bad_orientation else {
+        return Ok((missing > 0 && missing < n).then(|| {
+            format!(
+                "{label}: {source}: {missing} of {n} samples carry no orientation: the demo \
+                 has none"
+            )
+        }));
+    };
+    let (bad, zero) = s.bad_orientations;
     if zero == n {
         return Ok(Some(format!(
             "{label}: {source}: every orientation is the zero quaternion (a source that \

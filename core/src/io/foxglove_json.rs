@@ -48,7 +48,7 @@ impl MessageDecoder for JsonDecoder {
                     key: None,
                     stamp_ns,
                     position: vector(pose, "position", "pose.")?,
-                    orientation: Some(quaternion(pose, "orientation", "pose.")?),
+                    orientation: quaternion(pose, "orientation", "pose.")?,
                     ..PoseSample::default()
                 });
             }
@@ -72,7 +72,7 @@ impl MessageDecoder for JsonDecoder {
                         key: Some(Cow::Borrowed(key)),
                         stamp_ns,
                         position,
-                        orientation: Some(orientation),
+                        orientation,
                         ..PoseSample::default()
                     });
                 }
@@ -108,7 +108,8 @@ fn transform<'v>(t: &'v Object, path: &str) -> Result<PoseSample<'v>, String> {
         stamp_ns: stamp(t, path)?,
         position: vector(Some(t), "translation", path)?,
         parent: Some(Cow::Borrowed(parent)),
-        orientation: Some(quaternion(Some(t), "rotation", path)?),
+        // An unset rotation is the identity, as TF takes it.
+        orientation: Some(quaternion(Some(t), "rotation", path)?.unwrap_or([0.0, 0.0, 0.0, 1.0])),
     })
 }
 
@@ -153,10 +154,12 @@ fn vector(obj: Option<&Object>, name: &str, path: &str) -> Result<[f64; 3], Stri
 }
 
 /// The `x`, `y`, `z`, `w` of a Quaternion field, as stored (missing parts
-/// are zero, so a missing field is the all-zero quaternion, which the
-/// loader takes as "no orientation").
-fn quaternion(obj: Option<&Object>, name: &str, path: &str) -> Result<[f64; 4], String> {
-    parts(object(obj, name, path)?, ["x", "y", "z", "w"], name, path)
+/// are zero); `None` when the field itself is missing: no orientation.
+fn quaternion(obj: Option<&Object>, name: &str, path: &str) -> Result<Option<[f64; 4]>, String> {
+    match object(obj, name, path)? {
+        None => Ok(None),
+        Some(q) => parts(Some(q), ["x", "y", "z", "w"], name, path).map(Some),
+    }
 }
 
 /// Named number fields of an object; missing ones are zero.

@@ -222,7 +222,7 @@ impl Pose {
 
     fn read(&self, msg: &DynamicMessage) -> Result<([f64; 3], Option<[f64; 4]>), String> {
         let orientation = match &self.orientation {
-            Some(o) => Some(o.read(msg)?),
+            Some(o) => o.read_set(msg)?,
             None => None,
         };
         Ok((self.position.read(msg)?, orientation))
@@ -258,6 +258,30 @@ impl<const N: usize> Parts<N> {
     /// The numbers; unset messages on the way give zeros, as in protobuf.
     fn read(&self, msg: &DynamicMessage) -> Result<[f64; N], String> {
         read_parts(msg, &self.path, &self.parts)
+    }
+
+    /// The numbers, `None` where a message on the way is unset (an
+    /// orientation the message does not carry).
+    fn read_set(&self, msg: &DynamicMessage) -> Result<Option<[f64; N]>, String> {
+        read_set_parts(msg, &self.path, &self.parts)
+    }
+}
+
+fn read_set_parts<const N: usize>(
+    msg: &DynamicMessage,
+    path: &[FieldDescriptor],
+    parts: &[FieldDescriptor; N],
+) -> Result<Option<[f64; N]>, String> {
+    match path.split_first() {
+        None => read_parts(msg, &[], parts).map(Some),
+        Some((first, rest)) => {
+            if !msg.has_field(first) {
+                return Ok(None);
+            }
+            let value = msg.get_field(first);
+            let inner = value.as_message().ok_or_else(|| not_a("message", first))?;
+            read_set_parts(inner, rest, parts)
+        }
     }
 }
 
@@ -312,10 +336,9 @@ impl Transform {
                 _ => return Err(not_a("string", field)),
             },
         };
-        // An unset rotation reads as zeros, which the TF buffer takes as
-        // the identity.
+        // An unset rotation is the identity, as TF takes it.
         let orientation = match &self.rotation {
-            Some(r) => Some(r.read(msg)?),
+            Some(r) => Some(r.read_set(msg)?.unwrap_or([0.0, 0.0, 0.0, 1.0])),
             None => None,
         };
         Ok(PoseSample {
