@@ -332,10 +332,9 @@ fn integrate_in<const L: usize, const PEAK: bool, const V: usize>(
         let at = |l: usize| km[(start + l).min(L - 1)];
         let chunk = each::<V>(|v| f64x4::new(std::array::from_fn(|c| at(4 * v + c))));
         let (dc, pc) = integrate_chunk::<PEAK, V>(kernel, dm, &chunk);
-        for c in 0..(4 * V).min(L - start) {
-            d[start + c] = dc[c];
-            peak[start + c] = pc[c];
-        }
+        let count = (4 * V).min(L - start);
+        d[start..start + count].copy_from_slice(&dc[..count]);
+        peak[start..start + count].copy_from_slice(&pc[..count]);
     }
     (d, peak)
 }

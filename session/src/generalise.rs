@@ -72,6 +72,8 @@ pub(crate) struct GenKey {
     source: GenSource,
     start: Option<[u64; 3]>,
     goal: Option<[u64; 3]>,
+    start_orientation: Option<[u64; 4]>,
+    goal_orientation: Option<[u64; 4]>,
     duration: Option<u64>,
     scaling: Scaling,
 }
@@ -86,6 +88,8 @@ impl GenKey {
             source: spec.source,
             start: spec.target.start.map(bits),
             goal: spec.target.goal.map(bits),
+            start_orientation: spec.target.start_orientation.map(|q| q.map(f64::to_bits)),
+            goal_orientation: spec.target.goal_orientation.map(|q| q.map(f64::to_bits)),
             duration: spec.target.duration_s.map(f64::to_bits),
             scaling: spec.target.scaling,
         }

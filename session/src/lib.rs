@@ -56,6 +56,7 @@ use std::collections::BTreeSet;
 use std::sync::Arc;
 
 use dmpscope_core::extract::Refined;
+use dmpscope_core::orientation::OrientationRollout;
 use dmpscope_core::report::Constrained;
 use dmpscope_core::similarity::Standardised;
 use dmpscope_core::{
@@ -468,6 +469,13 @@ impl Session {
     /// Every model demo regenerated at the operating point.
     pub fn paths(&self) -> &[Rollout] {
         self.point.value().map_or(&[], |p| p.paths.as_slice())
+    }
+
+    /// Every demo's orientation regenerated at the operating point, in the
+    /// model's order (`None` for a demo without orientation; empty before
+    /// the first evaluation).
+    pub fn turns(&self) -> &[Option<OrientationRollout>] {
+        self.point.value().map_or(&[], |p| p.turns.as_slice())
     }
 
     /// The RL run, if one was started: what it trains and how far it is.

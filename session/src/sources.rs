@@ -108,6 +108,8 @@ pub struct StreamKey {
     pub fixed_frame: Option<String>,
     /// The positions' unit.
     pub units: dmpscope_core::units::Units,
+    /// Whether a bad orientation drops it instead of stopping the load.
+    pub drop_bad_orientation: bool,
 }
 
 impl StreamKey {
@@ -118,6 +120,7 @@ impl StreamKey {
             up: options.up,
             fixed_frame: options.fixed_frame.clone(),
             units: options.units,
+            drop_bad_orientation: options.drop_bad_orientation,
         }
     }
 
@@ -127,6 +130,7 @@ impl StreamKey {
             up: self.up,
             fixed_frame: self.fixed_frame.clone(),
             units: self.units,
+            drop_bad_orientation: self.drop_bad_orientation,
             ..LoadOptions::default()
         }
     }

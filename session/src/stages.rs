@@ -10,6 +10,7 @@ use dmpscope_core::diagnostics::DiagSettings;
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::extract::{Refined, constrained};
 use dmpscope_core::landscape::Grid;
+use dmpscope_core::orientation::OrientationRollout;
 use dmpscope_core::presets::PAPER_PRESETS;
 use dmpscope_core::similarity::Standardised;
 use dmpscope_core::{
@@ -89,6 +90,8 @@ pub(crate) struct RlKey {
 pub(crate) struct PointValue {
     pub(crate) eval: PointEval,
     pub(crate) paths: Vec<Rollout>,
+    /// Every demo's regenerated orientation (`None` without one).
+    pub(crate) turns: Vec<Option<OrientationRollout>>,
     /// Every demo's standardised forcing term and sigma_f there.
     pub(crate) standardised: Standardised,
     /// Each demo's share of S there (`None` with one demo).
@@ -367,6 +370,9 @@ impl Session {
                 eval: model.evaluate(dm, km),
                 paths: (0..model.demos().len())
                     .map(|i| model.rollout(i, dm, km))
+                    .collect(),
+                turns: (0..model.demos().len())
+                    .map(|i| model.orientation_rollout(i, dm, km))
                     .collect(),
                 shares: standardised.shares(),
                 standardised,

@@ -1,7 +1,11 @@
 //! Time plots of one demo against its regeneration at the operating point:
-//! position, velocity and acceleration per axis (the paper's Fig. 4).
+//! position, velocity and acceleration per axis (the paper's Fig. 4), or,
+//! for a demo with orientation (method.md section 12), the rotation to the
+//! goal, the angular velocity and the angular acceleration per axis.
 
 use dmpscope_core::geom::Vec3 as Point;
+use dmpscope_core::orientation::OrientationRollout;
+use dmpscope_core::rotation::{self, Q};
 use dmpscope_core::{PreparedDemo, Rollout};
 use eframe::egui::{self, Color32};
 use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints, VLine};
@@ -25,10 +29,6 @@ type Row<'a> = (&'a str, &'a [Point], &'a [Point], f64);
 /// time axis (seconds of the demonstration), with a cursor at unit time
 /// `t`. Returns the unit time under the pointer while it is over a plot.
 pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout, t: f64) -> Option<f64> {
-    let n = demo.len();
-    let t_of = |k: usize| demo.duration_s * k as f64 / (n - 1) as f64;
-    let height = ((ui.available_height() - 12.0) / 3.0).max(60.0);
-    let group = ui.scope_id().with("time plots");
     let rows: [Row<'_>; 3] = [
         ("position [m]", &demo.y_raw, &rollout.y, 1.0),
         (
@@ -44,8 +44,54 @@ pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout, t: f64) -
             1.0 / (demo.duration_s * demo.duration_s),
         ),
     ];
+    show_rows(ui, demo.duration_s, rows, t)
+}
+
+/// The orientation plots of `demo` against its regenerated orientation
+/// `turn`: the rotation vector from each orientation to the demo's goal
+/// (`2 log(q_g * conj(q))`, degrees), the angular velocity (rad/s) and the
+/// angular acceleration (rad/s²), per axis; `None` when the demo has no
+/// orientation.
+pub fn show_orientation(
+    ui: &mut egui::Ui,
+    demo: &PreparedDemo,
+    turn: &OrientationRollout,
+    t: f64,
+) -> Option<Option<f64>> {
+    let o = demo.orientation.as_ref()?;
+    let to_goal = |qs: &[Q]| -> Vec<Point> {
+        qs.iter()
+            .map(|&q| Point::from(rotation::rotation_vector(o.goal, q)).map(f64::to_degrees))
+            .collect()
+    };
+    let points = |v: &[[f64; 3]]| -> Vec<Point> { v.iter().map(|&p| Point::from(p)).collect() };
+    let (demo_rot, dmp_rot) = (to_goal(&o.q_raw), to_goal(&turn.q));
+    let (demo_w, dmp_w) = (points(&o.w), points(&turn.w));
+    let (demo_a, dmp_a) = (points(&o.wd), points(&turn.a));
+    let total = demo.duration_s;
+    let rows: [Row<'_>; 3] = [
+        ("rotation to the goal [deg]", &demo_rot, &dmp_rot, 1.0),
+        ("angular velocity [rad/s]", &demo_w, &dmp_w, 1.0 / total),
+        (
+            "angular acceleration [rad/s²]",
+            &demo_a,
+            &dmp_a,
+            1.0 / (total * total),
+        ),
+    ];
+    Some(show_rows(ui, total, rows, t))
+}
+
+/// Three stacked plots sharing the time axis (seconds over `duration_s`),
+/// the demo solid and the DMP dashed per axis, with a cursor at unit time
+/// `t`; returns the unit time under the pointer.
+fn show_rows(ui: &mut egui::Ui, duration_s: f64, rows: [Row<'_>; 3], t: f64) -> Option<f64> {
+    let height = ((ui.available_height() - 12.0) / 3.0).max(60.0);
+    let group = ui.scope_id().with("time plots");
     let mut hovered = None;
     for (label, target, regen, scale) in rows {
+        let n = target.len().max(2);
+        let t_of = |k: usize| duration_s * k as f64 / (n - 1) as f64;
         let response = Plot::new(label)
             .height(height)
             .legend(Legend::default())
@@ -55,7 +101,7 @@ pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout, t: f64) -
             .allow_scroll(false)
             .show(ui, |plot| {
                 plot.vline(
-                    VLine::new("time", t * demo.duration_s)
+                    VLine::new("time", t * duration_s)
                         .color(Color32::from_gray(200))
                         .width(1.0),
                 );
@@ -81,7 +127,7 @@ pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout, t: f64) -
         if response.response.hovered()
             && let Some(p) = response.inner
         {
-            hovered = Some((p.x / demo.duration_s).clamp(0.0, 1.0));
+            hovered = Some((p.x / duration_s).clamp(0.0, 1.0));
         }
     }
     hovered

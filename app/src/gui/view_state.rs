@@ -63,6 +63,9 @@ pub struct ViewState {
     pub second_map: Map,
     /// What the right panel shows.
     pub right: RightTab,
+    /// The Demo tab plots the orientation (demos with one) instead of the
+    /// position.
+    pub orientation_plots: bool,
     /// The demo under the pointer last frame (a model demo index),
     /// highlighted in the forcing terms, the 3D view and the demos list.
     pub hovered: Option<usize>,
@@ -101,6 +104,7 @@ impl ViewState {
             maps: Default::default(),
             second_map: Map::Quantity(dmpscope_core::Quantity::S),
             right: RightTab::default(),
+            orientation_plots: false,
             hovered: None,
             hovering: None,
             pareto: Default::default(),

@@ -28,7 +28,8 @@ pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     }
     if let Some(model) = session.model() {
         let view = &mut *cx.view;
-        view.view3d.toggles(ui, model.demos().len());
+        view.view3d
+            .toggles(ui, model.demos().len(), model.has_orientation());
         let learned = session
             .rl()
             .and_then(|(r, p)| p.greedy.as_ref().map(|g| (r.demo, g.path.as_slice())));
@@ -40,11 +41,12 @@ pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             band: &g.out.band,
             start: g.out.start,
             goal: g.out.goal,
+            turns: g.out.orientation.as_ref().map(|o| o.q.as_slice()),
         });
         let moved = view.view3d.show(
             ui,
             model,
-            session.paths(),
+            (session.paths(), session.turns()),
             highlighted,
             view.t,
             learned,

@@ -9,7 +9,7 @@ use dmpscope_core::{Model, Scaling, Target};
 use eframe::egui::{self, Color32};
 
 use super::super::commands::{Command, Export};
-use super::PanelCtx;
+use super::{PanelCtx, orientation_target};
 use crate::session::{Command as SessionCommand, GenSource, GeneraliseSpec, Session};
 
 /// The source's own start, goal (absolute) and duration.
@@ -78,6 +78,9 @@ pub fn generalise_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     }
     if let Some(own) = own_target(model, spec.source) {
         generalise_target_ui(ui, &mut spec, own);
+    }
+    if let Some(own) = orientation_target::own_orientation(model, spec.source) {
+        orientation_target::orientation_rows_ui(ui, cx, &mut spec.target, own);
     }
     generalise_gains_ui(ui, cx);
     generalise_result_ui(ui, session);
@@ -201,6 +204,20 @@ fn generalise_result_ui(ui: &mut egui::Ui, session: &Session) {
                 o.final_error * 1e3
             ))
             .on_hover_text("In real time over T'");
+            if let (Some(turn), Some(end)) = (&o.orientation, turn_end(o)) {
+                let peak = turn
+                    .a
+                    .iter()
+                    .map(|a| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt())
+                    .fold(0.0, f64::max);
+                let total = o.t.last().copied().unwrap_or(1.0).max(1e-9);
+                ui.label(format!(
+                    "orientation ends {end:.2}° from the goal orientation · alpha_peak {:.2} \
+                     rad/s²",
+                    peak / (total * total)
+                ))
+                .on_hover_text("In real time over T'");
+            }
             for w in &o.warnings {
                 ui.colored_label(Color32::from_rgb(240, 180, 80), w);
             }
@@ -210,6 +227,15 @@ fn generalise_result_ui(ui: &mut egui::Ui, session: &Session) {
         }
         None => {}
     }
+}
+
+/// The angle in degrees between a run's last orientation and the goal
+/// orientation it ran to (its own when none was asked for).
+fn turn_end(o: &dmpscope_core::Generalised) -> Option<f64> {
+    let turn = o.orientation.as_ref()?;
+    let last = *turn.q.last()?;
+    let goal = o.orientation_goal.unwrap_or(last);
+    Some(dmpscope_core::rotation::angle(last, goal).to_degrees())
 }
 
 /// The gains it runs at (the operating point's) and, when they differ, a

@@ -117,6 +117,14 @@ fn loading_rests_ui(ui: &mut egui::Ui, load: &mut dmpscope_core::io::LoadOptions
              time spans); the Recording panel's notes say how much either way",
     );
     ui.end_row();
+    ui.label("bad orientations");
+    ui.checkbox(&mut load.drop_bad_orientation, "drop")
+        .on_hover_text(
+            "beyond the method: a stream with a zero or non-finite quaternion loads its \
+         positions without orientation, with a warning, instead of the error naming the \
+         sample (docs/method.md section 12)",
+        );
+    ui.end_row();
 }
 
 /// The up axis row.

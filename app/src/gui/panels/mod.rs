@@ -13,6 +13,7 @@ mod diagnostics;
 mod gains;
 mod generalise;
 mod loading;
+mod orientation_target;
 mod plots_panel;
 mod recording;
 mod rl;

@@ -66,9 +66,21 @@ fn demo_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>, model: &Model) {
         .labelled_by(label.id);
         view.t = (seconds / demo.duration_s).clamp(0.0, 1.0);
     });
-    if let Some(rollout) = session.paths().get(view.selected)
-        && let Some(t) = plots::show(ui, demo, rollout, view.t)
-    {
+    let turn = session.turns().get(view.selected).and_then(Option::as_ref);
+    if turn.is_some() {
+        ui.horizontal(|ui| {
+            ui.selectable_value(&mut view.orientation_plots, false, "position");
+            ui.selectable_value(&mut view.orientation_plots, true, "orientation");
+        });
+    }
+    let hovered = match (turn, view.orientation_plots) {
+        (Some(turn), true) => plots::show_orientation(ui, demo, turn, view.t).flatten(),
+        _ => session
+            .paths()
+            .get(view.selected)
+            .and_then(|rollout| plots::show(ui, demo, rollout, view.t)),
+    };
+    if let Some(t) = hovered {
         view.t = t;
     }
 }

@@ -119,6 +119,7 @@ pub fn settings_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             .response
             .labelled_by(l.id);
         ui.end_row();
+        orientation_rows(ui, &mut s.dmp);
     });
     // The window is odd: an even value moves on the way it was going.
     let w = &mut s.prep.sg_window;
@@ -130,4 +131,43 @@ pub fn settings_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         *s = Settings::default();
         (s.load, s.op, s.log_colour) = keep;
     }
+}
+
+/// The orientation's options (method.md section 12, beyond the paper):
+/// k_rot in J and separate orientation gains.
+fn orientation_rows(ui: &mut egui::Ui, dmp: &mut dmpscope_core::dmp::DmpSettings) {
+    let l = ui.label("J: k_rot").on_hover_text(
+        "beyond the paper: J = S + k sum d + k_rot sum d_rot, d_rot in degrees (0: the \
+         paper's J on positions; needs demos with orientation)",
+    );
+    ui.add(
+        egui::DragValue::new(&mut dmp.k_rot)
+            .range(0.0..=100.0)
+            .speed(0.01),
+    )
+    .labelled_by(l.id);
+    ui.end_row();
+    let l = ui.label("orientation gains").on_hover_text(
+        "the orientation DMP at its own D/M and K/M instead of the position's (one pair \
+         for the pose, as CartesianDMP)",
+    );
+    ui.horizontal(|ui| {
+        let mut own = dmp.orientation_gains.is_some();
+        if ui.checkbox(&mut own, "own").labelled_by(l.id).changed() {
+            dmp.orientation_gains = own.then_some([25.0, 156.25]);
+        }
+        if let Some([dm, km]) = &mut dmp.orientation_gains {
+            ui.add(
+                egui::DragValue::new(dm)
+                    .range(0.01..=10_000.0)
+                    .prefix("D/M "),
+            );
+            ui.add(
+                egui::DragValue::new(km)
+                    .range(0.01..=100_000.0)
+                    .prefix("K/M "),
+            );
+        }
+    });
+    ui.end_row();
 }

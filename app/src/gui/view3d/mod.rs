@@ -10,6 +10,7 @@ mod scene;
 use dmpscope_core::geom::Vec3 as Point;
 use std::sync::Arc;
 
+use dmpscope_core::orientation::OrientationRollout;
 use dmpscope_core::{Model, Rollout};
 use eframe::egui::{self, Align2, Color32, FontId, Sense};
 use eframe::egui_wgpu;
@@ -28,6 +29,8 @@ pub struct GenOverlay<'a> {
     pub start: Point,
     /// The goal, absolute.
     pub goal: Point,
+    /// Its orientation on the grid, where the run has one.
+    pub turns: Option<&'a [[f64; 4]]>,
 }
 
 /// A handle of the overlay.
@@ -70,6 +73,8 @@ pub struct View3d {
     pub visible: Vec<bool>,
     /// Draw the regenerated paths.
     pub show_regen: bool,
+    /// Draw orientation triads along the paths (demos with orientation).
+    pub show_triads: bool,
     /// The overlay's handle being dragged.
     dragging: Option<Handle>,
     /// Where the overlay's start and goal were drawn last frame (screen
@@ -89,6 +94,7 @@ impl View3d {
             frame: None,
             visible: Vec::new(),
             show_regen: true,
+            show_triads: true,
             dragging: None,
             handles_on_screen: None,
         }
@@ -107,8 +113,9 @@ impl View3d {
         self.visible.clear();
     }
 
-    /// The visibility toggles, one coloured button per demo.
-    pub fn toggles(&mut self, ui: &mut egui::Ui, n: usize) {
+    /// The visibility toggles, one coloured button per demo, the
+    /// regenerations and (with `oriented` demos) the orientation triads.
+    pub fn toggles(&mut self, ui: &mut egui::Ui, n: usize, oriented: bool) {
         self.visible.resize(n, true);
         ui.horizontal_wrapped(|ui| {
             ui.label("show");
@@ -132,6 +139,13 @@ impl View3d {
                 }
             }
             ui.checkbox(&mut self.show_regen, "regenerated");
+            if oriented {
+                ui.checkbox(&mut self.show_triads, "orientation")
+                    .on_hover_text(
+                        "triads along the demos and the DMP (x red, y green, z blue), the start \
+                         and goal orientations, and the pose at the time cursor",
+                    );
+            }
         });
     }
 
@@ -144,12 +158,13 @@ impl View3d {
         &mut self,
         ui: &mut egui::Ui,
         model: &Model,
-        regen: &[Rollout],
+        regen: (&[Rollout], &[Option<OrientationRollout>]),
         selected: usize,
         t: f64,
         learned: Option<(usize, &[Point])>,
         overlay: Option<&GenOverlay<'_>>,
     ) -> Option<HandleMove> {
+        let (regen, turns) = regen;
         let size = ui.available_size().max(egui::vec2(120.0, 120.0));
         let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
         let painter = ui.painter_at(rect);
@@ -169,6 +184,7 @@ impl View3d {
         let drawn = Drawn {
             model,
             regen,
+            turns,
             selected,
             t,
             learned,
@@ -242,6 +258,21 @@ impl View3d {
         let n = drawn.model.demos().len();
         self.visible.resize(n, true);
         let colours: Vec<[u8; 3]> = (0..n).map(demo_colour).collect();
+        let demo_turns: Vec<Option<&[[f64; 4]]>> = drawn
+            .model
+            .demos()
+            .iter()
+            .map(|d| d.orientation.as_ref().map(|o| o.q_raw.as_slice()))
+            .collect();
+        let regen_turns: Vec<Option<&[[f64; 4]]>> = if self.show_regen {
+            drawn
+                .turns
+                .iter()
+                .map(|t| t.as_ref().map(|t| t.q.as_slice()))
+                .collect()
+        } else {
+            Vec::new()
+        };
         let input = scene::SceneInput {
             demos: drawn.model.demos(),
             regen: if self.show_regen { drawn.regen } else { &[] },
@@ -260,7 +291,11 @@ impl View3d {
                     Handle::Start => 0,
                     Handle::Goal => 1,
                 }),
+                turns: ov.turns,
             }),
+            demo_turns: &demo_turns,
+            regen_turns: &regen_turns,
+            triads: self.show_triads,
         };
         let segments = Arc::new(scene::build(frame, &input));
         let view_proj = camera.view_proj(aspect);
@@ -339,6 +374,7 @@ impl View3d {
 struct Drawn<'a> {
     model: &'a Model,
     regen: &'a [Rollout],
+    turns: &'a [Option<OrientationRollout>],
     selected: usize,
     t: f64,
     learned: Option<(usize, &'a [Point])>,

@@ -56,7 +56,17 @@ pub struct SceneInput<'a> {
     pub learned: Option<(usize, &'a [Point])>,
     /// A run at a new target, drawn white with its start and goal handles.
     pub generalised: Option<SceneGen<'a>>,
+    /// Per demo, its orientation on the unit-time grid (the raw target,
+    /// method.md section 12), `None` without one.
+    pub demo_turns: &'a [Option<&'a [Quat]>],
+    /// Per demo, its regenerated orientation (same grid), if shown.
+    pub regen_turns: &'a [Option<&'a [Quat]>],
+    /// Draw orientation triads along the paths.
+    pub triads: bool,
 }
+
+/// A quaternion `[x, y, z, w]`.
+pub type Quat = [f64; 4];
 
 /// A generalised run in the scene (absolute positions).
 pub struct SceneGen<'a> {
@@ -70,6 +80,8 @@ pub struct SceneGen<'a> {
     pub goal: Point,
     /// The handle being dragged: 0 start, 1 goal.
     pub active: Option<usize>,
+    /// Its orientation on the grid, where the run has one.
+    pub turns: Option<&'a [Quat]>,
 }
 
 /// The scene's frame: the origin subtracted from world points and the box
@@ -209,6 +221,46 @@ impl SegmentList {
     }
 }
 
+/// The triad's axes: x red, y green, z blue.
+const TRIAD: [[f32; 3]; 3] = [[0.95, 0.3, 0.25], [0.3, 0.85, 0.35], [0.3, 0.55, 1.0]];
+
+impl SegmentList {
+    /// The body axes of orientation `q` at `p`, `length` long.
+    fn triad(&mut self, p: Vec3, q: Quat, length: f32, width: f32, alpha: f32) {
+        let q = glam::Quat::from_xyzw(q[0] as f32, q[1] as f32, q[2] as f32, q[3] as f32);
+        if !q.is_finite() || q.length_squared() < 1e-6 {
+            return;
+        }
+        let q = q.normalize();
+        for (axis, c) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().zip(TRIAD) {
+            self.line(p, p + q * axis * length, [c[0], c[1], c[2], alpha], width);
+        }
+    }
+
+    /// Triads along `path` (one orientation per point of the same grid),
+    /// one every `spacing` of arc length.
+    fn triads_along(
+        &mut self,
+        path: &[Vec3],
+        turns: &[Quat],
+        spacing: f32,
+        length: f32,
+        width: f32,
+        alpha: f32,
+    ) {
+        let mut since = spacing;
+        for (k, (p, q)) in path.iter().zip(turns).enumerate() {
+            if k > 0 {
+                since += (*p - path[k - 1]).length();
+            }
+            if since >= spacing {
+                self.triad(*p, *q, length, width, alpha);
+                since = 0.0;
+            }
+        }
+    }
+}
+
 /// Interpolates a path on the unit-time grid at `t` in 0..=1.
 fn at_time(points: &[Vec3], t: f64) -> Option<Vec3> {
     let last = points.len().checked_sub(1)?;
@@ -237,6 +289,9 @@ pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
         .map(|(d, r)| r.y.iter().map(|p| frame.local(d.p0 + p)).collect())
         .collect();
     demo_paths_and_markers(&mut out, frame, input, &demo_paths, &regen_paths);
+    if input.triads {
+        demo_triads(&mut out, frame, input, &demo_paths, &regen_paths);
+    }
 
     // A run at a new target: white, its band faint, its handles on top.
     if let Some(g) = &input.generalised {
@@ -257,8 +312,66 @@ pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
                 out.dot(p, c, 8.0 * ppp);
             }
         }
+        // The pose at the cursor: a triad on the demo and its regeneration.
+        let cursor_turns = [
+            (demo_paths.get(sel), input.demo_turns.get(sel)),
+            (regen_paths.get(sel), input.regen_turns.get(sel)),
+        ];
+        for (path, turns) in cursor_turns {
+            if let (Some(path), Some(Some(turns))) = (path, turns)
+                && let (Some(p), Some(q)) = (at_time(path, input.t), nearest(turns, input.t))
+            {
+                out.triad(p, q, 0.45 * frame.grid_step(), 3.0 * ppp, 1.0);
+            }
+        }
     }
     out.segments
+}
+
+/// The orientation nearest unit time `t` on a grid.
+fn nearest(turns: &[Quat], t: f64) -> Option<Quat> {
+    let last = turns.len().checked_sub(1)?;
+    let k = (t.clamp(0.0, 1.0) * last as f64).round() as usize;
+    turns.get(k.min(last)).copied()
+}
+
+/// Triads along every shown demo (solid) and its regeneration (lighter),
+/// one every half grid step of path, and larger ones at the start and
+/// goal orientations.
+fn demo_triads(
+    out: &mut SegmentList,
+    frame: &Frame,
+    input: &SceneInput<'_>,
+    demo_paths: &[Vec<Vec3>],
+    regen_paths: &[Vec<Vec3>],
+) {
+    let ppp = input.pixels_per_point;
+    let step = frame.grid_step();
+    for (i, path) in demo_paths
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| input.shown(*i))
+    {
+        let Some(Some(turns)) = input.demo_turns.get(i) else {
+            continue;
+        };
+        out.triads_along(path, turns, 0.8 * step, 0.22 * step, 1.5 * ppp, 0.9);
+        if let (Some(p0), Some(q0)) = (path.first(), turns.first()) {
+            out.triad(*p0, *q0, 0.4 * step, 2.5 * ppp, 1.0);
+        }
+        if let (Some(pg), Some(qg)) = (path.last(), turns.last()) {
+            out.triad(*pg, *qg, 0.4 * step, 2.5 * ppp, 1.0);
+        }
+    }
+    for (i, path) in regen_paths
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| input.shown(*i))
+    {
+        if let Some(Some(turns)) = input.regen_turns.get(i) {
+            out.triads_along(path, turns, 0.8 * step, 0.22 * step, 1.0 * ppp, 0.5);
+        }
+    }
 }
 
 impl SceneInput<'_> {
@@ -386,6 +499,19 @@ fn generalised_run(out: &mut SegmentList, frame: &Frame, g: &SceneGen<'_>, input
         }
     }
     out.path(&path, [0.97, 0.97, 0.97, 1.0], 3.0 * ppp, 0.0);
+    if let Some(turns) = g.turns {
+        let step = frame.grid_step();
+        if input.triads {
+            out.triads_along(&path, turns, 0.5 * step, 0.22 * step, 1.5 * ppp, 0.9);
+        }
+        // The new goal orientation beside its ring, always.
+        if let (Some(pg), Some(qg)) = (path.last(), turns.last()) {
+            out.triad(*pg, *qg, 0.5 * step, 3.0 * ppp, 1.0);
+        }
+        if let Some(q0) = turns.first() {
+            out.triad(frame.local(g.start), *q0, 0.5 * step, 3.0 * ppp, 1.0);
+        }
+    }
     let handle = |i: usize| {
         if g.active == Some(i) {
             [1.0, 0.85, 0.3, 1.0]
