@@ -35,11 +35,26 @@ fn the_orientation_is_drawn_plotted_mapped_and_tabled() {
     );
     // The 3D view's toggle and the map of d_rot.
     let _triads = h.get_by_role_and_label(egui::accesskit::Role::CheckBox, "orientation");
-    let _map = h.get_by_label("d_rot");
+    // The d_rot map is computed when first shown (it costs about twice the
+    // position's kernel).
+    let nan_map = |h: &Harness<'_, DmpApp>| {
+        let shown = h.state().session().shown().expect("landscape");
+        shown
+            .values(dmpscope_core::Quantity::DRotSum)
+            .iter()
+            .all(|v| v.is_nan())
+    };
+    assert!(nan_map(&h), "not computed until shown");
+    h.get_by_label("d_rot").click();
+    h.run_steps(4);
+    assert!(!nan_map(&h), "computed once chosen");
     // Table I's orientation columns.
     let report = h.state().session().report().expect("report");
     assert!(report.oriented());
-    let _column = h.get_by_label("sum d_rot [deg]");
+    assert!(
+        h.query_all_by_label("sum d_rot [deg]").count() >= 1,
+        "the column"
+    );
     // The Demo tab plots the orientation.
     assert!(!h.state().view().orientation_plots);
     h.get_by_role_and_label(egui::accesskit::Role::Button, "orientation")

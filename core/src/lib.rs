@@ -45,6 +45,7 @@ mod orientation_kernel;
 pub mod pipeline;
 pub mod planted;
 mod planted_orientation;
+mod position_kernel;
 pub mod prepare;
 pub mod presets;
 pub mod quantity;

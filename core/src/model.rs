@@ -14,6 +14,7 @@ use crate::dmp::{Basis, DmpSettings, Projections};
 use crate::error::{Error, Result};
 use crate::geom::Vec3;
 use crate::orientation_kernel::{self, RotKernel};
+use crate::position_kernel::{DemoKernel, integrate};
 use crate::prepare::PreparedDemo;
 use crate::quantity::{self, PointValues, Quantity};
 use crate::similarity::{Similarity, trapezoid};
@@ -42,55 +43,6 @@ pub struct Model {
     /// With separate orientation gains: each demo's `(d_rot, alpha_peak)`
     /// at them, the same at every position gain pair.
     rot_fixed: Option<Vec<Option<(f64, f64)>>>,
-}
-
-/// One demo laid out for the integration kernel, in scaled variables
-/// `z = y - g` and `u = v dt`, so that a step is
-/// `u += (F0 + D F1 + K F2) dt^2 - K dt^2 z - D dt u; z += u`.
-#[derive(Clone, Debug)]
-pub(crate) struct DemoKernel {
-    /// Per grid point and axis: `[F0 dt^2, F1 dt^2, F2 dt^2, y_raw - g]`.
-    steps: Vec<[[f64; 4]; 3]>,
-    /// `y_raw(0) - g`.
-    z0: [f64; 3],
-    /// `y'(0) dt`.
-    u0: [f64; 3],
-}
-
-impl DemoKernel {
-    /// A kernel from its parts: per grid point and axis
-    /// `[F0 dt^2, F1 dt^2, F2 dt^2, y_raw - g]`, `z0 = y_raw(0) - g` and
-    /// `u0 = y'(0) dt`.
-    pub(crate) fn from_parts(steps: Vec<[[f64; 4]; 3]>, z0: [f64; 3], u0: [f64; 3]) -> Self {
-        Self { steps, z0, u0 }
-    }
-
-    fn new(demo: &PreparedDemo, proj: &Projections) -> Self {
-        let n = demo.len();
-        let dt = 1.0 / (n - 1) as f64;
-        let dt2 = dt * dt;
-        let g = demo.goal;
-        let steps = proj
-            .f
-            .iter()
-            .zip(&demo.y_raw)
-            .map(|(fk, yr)| {
-                std::array::from_fn(|ax| {
-                    [
-                        fk[ax][0] * dt2,
-                        fk[ax][1] * dt2,
-                        fk[ax][2] * dt2,
-                        yr[ax] - g[ax],
-                    ]
-                })
-            })
-            .collect();
-        Self {
-            steps,
-            z0: std::array::from_fn(|ax| demo.y_raw[0][ax] - g[ax]),
-            u0: std::array::from_fn(|ax| demo.yd[0][ax] * dt),
-        }
-    }
 }
 
 /// The evaluation of one gain pair over all demos.
@@ -324,9 +276,19 @@ impl Model {
         Some((d[0], a[0]))
     }
 
+    /// The landscape's `sum d_rot` at `(dm, km[l])`: NaN when the map is
+    /// off ([`DmpSettings::orientation_map`] and no `k_rot`).
+    fn d_rot_map_lanes<const L: usize>(&self, dm: f64, km: [f64; L]) -> [f64; L] {
+        if self.settings.orientation_map || self.settings.k_rot != 0.0 {
+            self.d_rot_sum_of(dm, km)
+        } else {
+            [f64::NAN; L]
+        }
+    }
+
     /// `sum d_rot` in degrees at the gain pairs `(dm, km[l])` (NaN when no
     /// demo has an orientation).
-    fn d_rot_sum_lanes<const L: usize>(&self, dm: f64, km: [f64; L]) -> [f64; L] {
+    fn d_rot_sum_of<const L: usize>(&self, dm: f64, km: [f64; L]) -> [f64; L] {
         if let Some(fixed) = &self.rot_fixed {
             return [fixed_sum(fixed); L];
         }
@@ -431,7 +393,7 @@ impl Model {
             Err(_) => e_sum = [f64::NAN; L],
         }
         let s = self.similarity.evaluate_lanes(dm, km);
-        let d_rot_sum = self.d_rot_sum_lanes(dm, km);
+        let d_rot_sum = self.d_rot_map_lanes(dm, km);
         std::array::from_fn(|l| {
             let mut point = [0.0; quantity::COUNT];
             point[Quantity::DSum.index()] = d_sum[l];
@@ -454,7 +416,7 @@ impl Model {
         let d_rot_sum = if k_rot == 0.0 {
             0.0
         } else {
-            self.d_rot_sum_lanes(dm, [km])[0]
+            self.d_rot_sum_of(dm, [km])[0]
         };
         j_of(self.similarity.evaluate(dm, km), d_sum, d_rot_sum, k, k_rot)
     }
@@ -590,50 +552,4 @@ fn check_orientation_settings(settings: &DmpSettings, any_orientation: bool) -> 
         )));
     }
     Ok(())
-}
-
-/// Integrates a kernel at `(dm, km[l])` for each lane (method.md section
-/// 4, in the kernel's scaled variables) and returns `d` (or `e`) and, when
-/// `PEAK`, `a_peak` per lane.
-fn integrate<const L: usize, const PEAK: bool>(
-    kernel: &DemoKernel,
-    dm: f64,
-    km: [f64; L],
-) -> ([f64; L], [f64; L]) {
-    let n = kernel.steps.len();
-    let dt = 1.0 / (n - 1) as f64;
-    let dt2 = dt * dt;
-    let ddt = dm * dt;
-    let kdt2 = km.map(|k| k * dt2);
-    let mut z: [[f64; L]; 3] = std::array::from_fn(|ax| [kernel.z0[ax]; L]);
-    let mut u: [[f64; L]; 3] = std::array::from_fn(|ax| [kernel.u0[ax]; L]);
-    let mut err_sum = [0.0; L];
-    let mut du2_max = [0.0f64; L];
-    for (k, step) in kernel.steps.iter().enumerate() {
-        let mut e2 = [0.0; L];
-        let mut du2 = [0.0; L];
-        for ax in 0..3 {
-            let [f0, f1, f2, target] = step[ax];
-            let fd = f0 + dm * f1;
-            for l in 0..L {
-                let e = z[ax][l] - target;
-                e2[l] += e * e;
-                // a dt^2 = f dt^2 - K dt^2 (y - g) - D dt (v dt)
-                let du = fd + km[l] * f2 - kdt2[l] * z[ax][l] - ddt * u[ax][l];
-                if PEAK {
-                    du2[l] += du * du;
-                }
-                u[ax][l] += du;
-                z[ax][l] += u[ax][l];
-            }
-        }
-        let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
-        for l in 0..L {
-            err_sum[l] += w * e2[l].sqrt();
-            if PEAK {
-                du2_max[l] = du2_max[l].max(du2[l]);
-            }
-        }
-    }
-    (err_sum.map(|e| e * dt), du2_max.map(|m| m.sqrt() / dt2))
 }

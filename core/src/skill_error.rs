@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use crate::dmp::Projections;
 use crate::generalise::{Mapping, Scaling};
 use crate::geom::Vec3;
-use crate::model::DemoKernel;
+use crate::position_kernel::DemoKernel;
 use crate::prepare::PreparedDemo;
 
 /// How the one skill follows each demo's start and goal (method.md

@@ -50,7 +50,12 @@ impl Default for Settings {
         Self {
             load: LoadOptions::default(),
             prep: PrepSettings::default(),
-            dmp: DmpSettings::default(),
+            // The d_rot map when it is shown (it costs about twice the
+            // position's kernel): the app turns it on from the map chooser.
+            dmp: DmpSettings {
+                orientation_map: false,
+                ..DmpSettings::default()
+            },
             grid: Grid::default(),
             k: DEFAULT_K,
             op,

@@ -274,7 +274,10 @@ impl eframe::App for DmpApp {
             }
         }
         #[cfg(feature = "testing")]
-        self.frame_watch.frame(self.session.landscape_complete());
+        self.frame_watch.frame(
+            self.session.landscape_complete(),
+            self.session.status().describe(),
+        );
         let arrived = self.take_inputs(&ctx);
         for c in arrived {
             self.run(c, &ctx);

@@ -45,20 +45,30 @@ pub struct FrameWatch {
     last: Option<Instant>,
     frames: u64,
     longest_ms_computing: f64,
+    /// The frame that ended the longest interval, and what the session was
+    /// doing at the frame before it.
+    longest_at: (u64, String),
+    /// The session's status at the last frame.
+    status: String,
 }
 
 impl FrameWatch {
-    /// Records a frame; `complete` says whether the landscape is complete.
-    pub fn frame(&mut self, complete: bool) {
+    /// Records a frame; `complete` says whether the landscape is complete
+    /// and `status` what the session is doing.
+    pub fn frame(&mut self, complete: bool, status: String) {
         let now = Instant::now();
         if let Some(last) = self.last
             && !complete
         {
             let ms = now.duration_since(last).as_secs_f64() * 1e3;
-            self.longest_ms_computing = self.longest_ms_computing.max(ms);
+            if ms > self.longest_ms_computing {
+                self.longest_ms_computing = ms;
+                self.longest_at = (self.frames, std::mem::take(&mut self.status));
+            }
         }
         self.last = Some(now);
         self.frames += 1;
+        self.status = status;
     }
 }
 
@@ -164,6 +174,8 @@ impl DmpApp {
             "rows": rows,
             "frames": self.frame_watch.frames,
             "longest_frame_ms_computing": self.frame_watch.longest_ms_computing,
+            "longest_frame_at": self.frame_watch.longest_at.0,
+            "longest_frame_after": self.frame_watch.longest_at.1,
             "longest_slice_ms": page.longest_ms,
             "compute_ms": page.total_ms,
             "messages": messages,

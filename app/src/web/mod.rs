@@ -93,6 +93,7 @@ pub fn start() {
                 canvas,
                 eframe::WebOptions::default(),
                 Box::new(|cc| {
+                    cc.egui_ctx.set_fonts(web_fonts());
                     #[cfg(feature = "testing")]
                     CONTEXT.with(|c| *c.borrow_mut() = Some(cc.egui_ctx.clone()));
                     let ctx = cc.egui_ctx.clone();
@@ -112,4 +113,31 @@ pub fn start() {
             }
         }
     });
+}
+
+/// The browser's fonts: Ubuntu-Light for proportional and monospace text,
+/// egui's icons as the fallback (egui's defaults add Hack for monospace,
+/// 150 KB of the gzipped download).
+fn web_fonts() -> eframe::egui::FontDefinitions {
+    use eframe::egui::{FontData, FontDefinitions, FontFamily, FontTweak};
+    let mut fonts = FontDefinitions::empty();
+    fonts.font_data.insert(
+        "Ubuntu-Light".to_owned(),
+        std::sync::Arc::new(FontData::from_static(epaint_default_fonts::UBUNTU_LIGHT)),
+    );
+    fonts.font_data.insert(
+        "egui-icons".to_owned(),
+        std::sync::Arc::new(
+            FontData::from_static(epaint_default_fonts::EGUI_ICONS).tweak(FontTweak {
+                scale: 0.90,
+                ..Default::default()
+            }),
+        ),
+    );
+    let family = vec!["Ubuntu-Light".to_owned(), "egui-icons".to_owned()];
+    fonts
+        .families
+        .insert(FontFamily::Proportional, family.clone());
+    fonts.families.insert(FontFamily::Monospace, family);
+    fonts
 }

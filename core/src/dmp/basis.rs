@@ -33,6 +33,17 @@ pub struct DmpSettings {
     /// 12 says); `--orientation-gains`.
     #[serde(default)]
     pub orientation_gains: Option<[f64; 2]>,
+    /// Whether the landscape maps `sum d_rot` (method.md section 12):
+    /// the orientation's kernel costs about twice the position's, so the
+    /// app computes the map when it is shown (or `k_rot` needs it); the
+    /// CLI always. Each evaluated point (Table I, the operating point) has
+    /// its d_rot either way.
+    #[serde(default = "yes")]
+    pub orientation_map: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 impl Default for DmpSettings {
@@ -44,6 +55,7 @@ impl Default for DmpSettings {
             skill_mode: crate::skill_error::SkillMode::Frame,
             k_rot: 0.0,
             orientation_gains: None,
+            orientation_map: true,
         }
     }
 }

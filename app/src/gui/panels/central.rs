@@ -193,6 +193,10 @@ fn maps(
         });
     });
     view.second_map = chosen;
+    // The d_rot map is computed when it is first shown.
+    if chosen == Map::Quantity(Quantity::DRotSum) {
+        s.dmp.orientation_map = true;
+    }
     s.op = op;
 }
 
