@@ -22,6 +22,12 @@ use crate::workers::{Exchanged, Generation, Handout, Setup, Workers};
 
 /// Points per tile: about 8 ms of one core.
 pub const TILE_POINTS: usize = 128;
+
+/// Tiles a worker holds at once: enough queued work (a few milliseconds
+/// each) that it keeps computing while the page's thread draws a frame
+/// (which hands out no tile), few enough that a cancelled landscape wastes
+/// little.
+pub const TILES_IN_FLIGHT: usize = 16;
 /// Time an exchange may spend computing when no worker is left.
 const HERE_BUDGET: Duration = Duration::from_millis(8);
 
@@ -48,6 +54,9 @@ impl Handout for TiledFill {
     }
     fn kind(&self) -> &'static str {
         "tile"
+    }
+    fn in_flight(&self) -> usize {
+        TILES_IN_FLIGHT
     }
     fn next(&mut self) -> Option<(usize, Vec<u32>)> {
         self.next_tile().map(|(t, points)| (t, flat(points)))

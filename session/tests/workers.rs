@@ -221,7 +221,11 @@ fn tiles_out_of_order_lost_and_from_a_failed_worker_give_the_inline_landscape() 
         (a.landscape.grid, a.landscape.filled),
         (b.landscape.grid, b.landscape.filled)
     );
-    assert_eq!(bits(&a.landscape), bits(&b.landscape), "the same landscape, bit for bit");
+    assert_eq!(
+        bits(&a.landscape),
+        bits(&b.landscape),
+        "the same landscape, bit for bit"
+    );
     assert_eq!(
         inline.extraction().map(|x| x.eval.dm.to_bits()),
         pooled.extraction().map(|x| x.eval.dm.to_bits())

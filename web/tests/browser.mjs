@@ -124,6 +124,8 @@ try {
   const done = await until("the optimum", (s) => s.optimum !== null, 30000);
   figures.longest_frame_interval_ms_while_computing = done.longest_frame_ms_computing;
   figures.longest_frame_interval_at = `frame ${done.longest_frame_at}, after: ${done.longest_frame_after}`;
+  figures.longest_frame_cpu_ms_while_computing = done.longest_frame_cpu_ms;
+  figures.longest_frame_cpu_at = done.longest_frame_cpu_after;
   console.log(`optimum ${JSON.stringify(done.optimum)}`);
   // The same numbers as the native build (DMPSCOPE_BIN, else target/{debug,release}).
   const repo = join(here, "..", "..");

@@ -277,6 +277,7 @@ impl eframe::App for DmpApp {
         self.frame_watch.frame(
             self.session.landscape_complete(),
             self.session.status().describe(),
+            frame.info().cpu_usage,
         );
         let arrived = self.take_inputs(&ctx);
         for c in arrived {

@@ -50,13 +50,20 @@ pub struct FrameWatch {
     longest_at: (u64, String),
     /// The session's status at the last frame.
     status: String,
+    /// The app's own CPU time of its longest frame while computing (egui's
+    /// `cpu_usage`, without the renderer's), and the status then.
+    cpu_ms_computing: (f64, String),
 }
 
 impl FrameWatch {
     /// Records a frame; `complete` says whether the landscape is complete
     /// and `status` what the session is doing.
-    pub fn frame(&mut self, complete: bool, status: String) {
+    pub fn frame(&mut self, complete: bool, status: String, cpu_s: Option<f32>) {
         let now = Instant::now();
+        let cpu_ms = f64::from(cpu_s.unwrap_or(0.0)) * 1e3;
+        if !complete && cpu_ms > self.cpu_ms_computing.0 {
+            self.cpu_ms_computing = (cpu_ms, self.status.clone());
+        }
         if let Some(last) = self.last
             && !complete
         {
@@ -176,6 +183,8 @@ impl DmpApp {
             "longest_frame_ms_computing": self.frame_watch.longest_ms_computing,
             "longest_frame_at": self.frame_watch.longest_at.0,
             "longest_frame_after": self.frame_watch.longest_at.1,
+            "longest_frame_cpu_ms": self.frame_watch.cpu_ms_computing.0,
+            "longest_frame_cpu_after": self.frame_watch.cpu_ms_computing.1,
             "longest_slice_ms": page.longest_ms,
             "compute_ms": page.total_ms,
             "messages": messages,
