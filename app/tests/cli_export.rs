@@ -33,6 +33,34 @@ fn ok(args: &[&str]) -> String {
 
 const GAINS: [&str; 4] = ["--dm", "25", "--km", "156.25"];
 
+/// `regen` of the planted sample's demo 1 at CartesianDMP's gains to a new
+/// goal orientation, written to `out`.
+fn planted_to_a_goal_orientation(out: &str, extra: &[&str]) -> Vec<String> {
+    let planted = repo().join("assets/planted8.mcap").display().to_string();
+    let mut args: Vec<String> = [
+        "regen",
+        &planted,
+        "--dm",
+        "25",
+        "--km",
+        "156.25",
+        "--demo",
+        "1",
+        "--goal-orientation",
+        "0.3",
+        "0.1",
+        "0.2",
+        "0.9",
+        "--out",
+        out,
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    args.extend(extra.iter().map(|s| s.to_string()));
+    args
+}
+
 fn regen(extra: &[&str]) -> Vec<String> {
     let mut args: Vec<String> = vec!["regen".into(), sample()];
     args.extend(GAINS.iter().map(|s| s.to_string()));
@@ -106,24 +134,7 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
     ]));
     // A demo with orientation (the planted sample) to a new goal orientation.
     let oriented = tmp("oriented.json");
-    let planted = repo().join("assets/planted8.mcap").display().to_string();
-    ok(&[
-        "regen",
-        &planted,
-        "--dm",
-        "25",
-        "--km",
-        "156.25",
-        "--demo",
-        "1",
-        "--goal-orientation",
-        "0.3",
-        "0.1",
-        "0.2",
-        "0.9",
-        "--out",
-        &oriented,
-    ]);
+    run(&planted_to_a_goal_orientation(&oriented, &[]));
     let od = json(&oriented);
     let q = od["rollout"]["q"].as_array().expect("rollout.q");
     assert_eq!(q.len(), 1001);
@@ -367,31 +378,7 @@ fn the_ros_trajectories_of_an_oriented_path_carry_its_orientation() {
     // the MultiDOFJointTrajectory's rotations are the DMP's, its angular
     // velocity and acceleration the unit-time ones over the duration.
     let (mcap_path, json_path) = (tmp("oriented_ros.mcap"), tmp("oriented_ros.json"));
-    let planted = repo().join("assets/planted8.mcap").display().to_string();
-    let args = |out: &str| -> Vec<String> {
-        [
-            "regen",
-            &planted,
-            "--dm",
-            "25",
-            "--km",
-            "156.25",
-            "--demo",
-            "1",
-            "--goal-orientation",
-            "0.3",
-            "0.1",
-            "0.2",
-            "0.9",
-            "--duration",
-            "2.0",
-            "--out",
-            out,
-        ]
-        .iter()
-        .map(|s| s.to_string())
-        .collect()
-    };
+    let args = |out: &str| planted_to_a_goal_orientation(out, &["--duration", "2.0"]);
     run(&args(&mcap_path));
     run(&args(&json_path));
     let doc = json(&json_path);

@@ -65,6 +65,14 @@ fn close_q(ours: Q, theirs: Q, what: &str) {
     }
 }
 
+/// The grid indices the reference records values at.
+fn indices(expected: &Value) -> Vec<usize> {
+    fs(&expected["meta"]["idx"])
+        .iter()
+        .map(|&v| v as usize)
+        .collect()
+}
+
 /// Our demo index of the reference's demo `name` (a topic).
 fn index_of(model: &Model, name: &str) -> usize {
     model
@@ -78,10 +86,7 @@ fn index_of(model: &Model, name: &str) -> usize {
 fn the_prepared_orientation_matches_the_reference() {
     let expected = golden("expected_orientation.json");
     let model = model();
-    let idx: Vec<usize> = fs(&expected["meta"]["idx"])
-        .iter()
-        .map(|&v| v as usize)
-        .collect();
+    let idx = indices(&expected);
     for demo in expected["demos"].as_array().expect("demos") {
         let name = demo["name"].as_str().expect("name");
         let i = index_of(&model, name);
@@ -113,10 +118,7 @@ fn the_prepared_orientation_matches_the_reference() {
 fn each_demos_orientation_error_and_path_match_the_reference() {
     let expected = golden("expected_orientation.json");
     let model = model();
-    let idx: Vec<usize> = fs(&expected["meta"]["idx"])
-        .iter()
-        .map(|&v| v as usize)
-        .collect();
+    let idx = indices(&expected);
     for point in expected["points"].as_array().expect("points") {
         let (dm, km) = (f(&point["dm"]), f(&point["km"]));
         let eval = model.evaluate(dm, km);

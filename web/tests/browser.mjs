@@ -8,11 +8,11 @@
 //
 // Usage: web/build.sh --testing && (cd web/tests && npm ci && node browser.mjs)
 import { chromium } from "playwright-core";
-import { createServer } from "node:http";
+import { serve } from "./serve.mjs";
 import { readFile, mkdtemp, mkdir, writeFile, rm } from "node:fs/promises";
 import { existsSync } from "node:fs";
 import { tmpdir } from "node:os";
-import { join, extname, dirname } from "node:path";
+import { join, dirname } from "node:path";
 import { fileURLToPath } from "node:url";
 import { gzipSync } from "node:zlib";
 import { execFileSync } from "node:child_process";
@@ -21,11 +21,6 @@ const here = dirname(fileURLToPath(import.meta.url));
 const dist = join(here, "..", "dist");
 const out = join(here, "out");
 const chromiumPath = process.env.CHROMIUM ?? "/usr/bin/chromium";
-const TYPES = {
-  ".html": "text/html", ".js": "text/javascript", ".wasm": "application/wasm",
-  ".png": "image/png", ".json": "application/json",
-};
-
 function fail(message) {
   console.error(`FAIL: ${message}`);
   process.exitCode = 1;
@@ -39,19 +34,7 @@ function check(ok, message) {
 if (!existsSync(join(dist, "dmpscope_bg.wasm"))) fail(`no build in ${dist}: run web/build.sh --testing`);
 if (!existsSync(chromiumPath)) fail(`no Chromium at ${chromiumPath}: apt install chromium`);
 
-const server = createServer(async (req, res) => {
-  const path = join(dist, decodeURIComponent(new URL(req.url, "http://x").pathname).replace(/\/$/, "/index.html"));
-  try {
-    const body = await readFile(path);
-    res.writeHead(200, { "content-type": TYPES[extname(path)] ?? "application/octet-stream" });
-    res.end(body);
-  } catch {
-    res.writeHead(404);
-    res.end();
-  }
-});
-await new Promise((r) => server.listen(0, "127.0.0.1", r));
-const url = `http://127.0.0.1:${server.address().port}/`;
+const { server, url } = await serve(dist);
 
 const profile = await mkdtemp(join(tmpdir(), "dmpscope-chromium-"));
 const context = await chromium.launchPersistentContext(profile, {

@@ -3,27 +3,15 @@
 // keep their names). A tool for finding where the page's frames go, not a
 // test: `web/build.sh --testing && (cd web/tests && node profile.mjs)`.
 import { chromium } from "playwright-core";
-import { createServer } from "node:http";
-import { readFile, mkdtemp } from "node:fs/promises";
+import { serve } from "./serve.mjs";
+import { mkdtemp } from "node:fs/promises";
 import { tmpdir } from "node:os";
-import { join, extname, dirname } from "node:path";
+import { join, dirname } from "node:path";
 import { fileURLToPath } from "node:url";
 
 const here = dirname(fileURLToPath(import.meta.url));
 const dist = join(here, "..", "dist");
-const TYPES = { ".html": "text/html", ".js": "text/javascript", ".wasm": "application/wasm" };
-const server = createServer(async (req, res) => {
-  const path = join(dist, decodeURIComponent(new URL(req.url, "http://x").pathname).replace(/\/$/, "/index.html"));
-  try {
-    const body = await readFile(path);
-    res.writeHead(200, { "content-type": TYPES[extname(path)] ?? "application/octet-stream" });
-    res.end(body);
-  } catch {
-    res.writeHead(404);
-    res.end();
-  }
-});
-await new Promise((r) => server.listen(0, "127.0.0.1", r));
+const { server, url } = await serve(dist);
 const profileDir = await mkdtemp(join(tmpdir(), "dmpscope-profile-"));
 const context = await chromium.launchPersistentContext(profileDir, {
   executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
@@ -37,7 +25,7 @@ const cdp = await context.newCDPSession(page);
 await cdp.send("Profiler.enable");
 await cdp.send("Profiler.setSamplingInterval", { interval: 200 });
 await cdp.send("Profiler.start");
-await page.goto(`http://127.0.0.1:${server.address().port}/`);
+await page.goto(url);
 const state = () => page.evaluate(() => (window.dmpscope_state ? JSON.parse(window.dmpscope_state()) : null));
 for (let i = 0; i < 600; i++) {
   const s = await state();

@@ -351,7 +351,10 @@ fn vs_numpy(grid: usize, repeat: usize) -> anyhow::Result<()> {
         .stderr(Stdio::null())
         .status()
         .is_ok_and(|s| s.success());
-    anyhow::ensure!(ok, "{python} cannot import numpy and scipy (pip install numpy scipy)");
+    anyhow::ensure!(
+        ok,
+        "{python} cannot import numpy and scipy (pip install numpy scipy)"
+    );
     let me = std::env::current_exe().context("the running binary")?;
     let out = std::env::temp_dir().join("dmpscope-bench-landscape.json");
     let n = grid.to_string();

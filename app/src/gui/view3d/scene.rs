@@ -336,8 +336,8 @@ fn nearest(turns: &[Quat], t: f64) -> Option<Quat> {
 }
 
 /// Triads along every shown demo (solid) and its regeneration (lighter),
-/// one every half grid step of path, and larger ones at the start and
-/// goal orientations.
+/// one every 0.8 grid steps of path, and larger ones at the start and goal
+/// orientations.
 fn demo_triads(
     out: &mut SegmentList,
     frame: &Frame,
