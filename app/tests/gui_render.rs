@@ -275,4 +275,43 @@ fn the_goal_and_start_of_a_new_target_drag_in_the_3d_view() {
     h.run_steps(2);
     let spec = *h.state().session().generalise_spec().expect("on");
     assert_eq!((spec.target.start, spec.target.goal), (None, None));
+    // With Ctrl (Cmd) a drag across the goal turns its orientation about the
+    // vertical, and the run turns to it (method.md section 12).
+    let [_, goal] = h
+        .state()
+        .view()
+        .view3d
+        .handles_on_screen()
+        .expect("handles drawn");
+    drag(
+        &mut h,
+        goal,
+        goal + egui::vec2(60.0, 0.0),
+        egui::Modifiers::COMMAND,
+    );
+    let spec = *h.state().session().generalise_spec().expect("on");
+    assert_eq!(spec.target.goal, None, "the goal did not move");
+    let turned = spec
+        .target
+        .goal_orientation
+        .expect("the drag turned the goal");
+    let g = h
+        .state()
+        .session()
+        .generalised()
+        .expect("on")
+        .expect("runs");
+    let own_goal = h.state().session().model().expect("model").demos()[0]
+        .orientation
+        .as_ref()
+        .expect("planted8 turns")
+        .goal;
+    let by = dmpscope_core::rotation::angle(turned, own_goal).to_degrees();
+    assert!(by > 5.0, "turned by {by} degrees");
+    let path = g.out.orientation.as_ref().expect("an orientation path");
+    let end = dmpscope_core::rotation::angle(*path.q.last().expect("end"), turned).to_degrees();
+    assert!(
+        end < by,
+        "the run turns towards it: ends {end} degrees away"
+    );
 }

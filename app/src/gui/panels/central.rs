@@ -11,7 +11,7 @@ use eframe::egui::{self, Color32};
 use super::super::commands::Map;
 use super::super::heatmap::{self, MapInput, Marker};
 use super::super::view_state::ViewState;
-use super::super::view3d::{GenOverlay, Handle};
+use super::super::view3d::{GenOverlay, Handle, HandleMove};
 use super::PanelCtx;
 use crate::session::{Command as SessionCommand, Session, Settings, Shown, Status};
 
@@ -54,9 +54,27 @@ pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         );
         if let (Some(m), Some(spec)) = (moved, session.generalise_spec()) {
             let mut spec = *spec;
-            match m.handle {
-                Handle::Start => spec.target.start = Some(m.to),
-                Handle::Goal => spec.target.goal = Some(m.to),
+            match m {
+                HandleMove::Moved {
+                    handle: Handle::Start,
+                    to,
+                } => spec.target.start = Some(to),
+                HandleMove::Moved {
+                    handle: Handle::Goal,
+                    to,
+                } => spec.target.goal = Some(to),
+                HandleMove::Turned(v) => {
+                    // The run's goal orientation (its own unless one was
+                    // asked for), turned in the scene's frame.
+                    let own =
+                        generalised.and_then(|g| g.out.orientation.as_ref()?.q.last().copied());
+                    if let Some(q) = spec.target.goal_orientation.or(own) {
+                        let turn = dmpscope_core::rotation::exp(v.map(|c| 0.5 * c));
+                        spec.target.goal_orientation = Some(dmpscope_core::rotation::normalised(
+                            dmpscope_core::rotation::mul(turn, q),
+                        ));
+                    }
+                }
             }
             cx.push(SessionCommand::SetGeneralise(Some(spec)));
         }

@@ -85,7 +85,7 @@ pub fn generalise_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     generalise_gains_ui(ui, cx);
     generalise_result_ui(ui, session);
     generalise_export_ui(ui, cx);
-    ui.weak("3D view: drag the white goal ring or start disc (Shift: height)");
+    ui.weak("3D view: drag the white goal ring or start disc (Shift: height; Ctrl on the goal: turn its orientation)");
     if spec != before {
         cx.push(SessionCommand::SetGeneralise(Some(spec)));
     }

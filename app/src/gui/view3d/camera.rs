@@ -139,11 +139,16 @@ impl OrbitCamera {
     /// Pans by a drag of `delta` points in a view `height` points tall, so
     /// the target follows the pointer.
     pub fn pan(&mut self, delta: Vec2, height: f32) {
-        let forward = (self.target - self.eye()).normalize_or_zero();
-        let right = forward.cross(Vec3::Z).normalize_or_zero();
-        let up = right.cross(forward);
+        let (right, up) = self.right_up();
         let per_point = 2.0 * self.distance * (0.5 * FOV_Y).tan() / height.max(1.0);
         self.target += (-delta.x * right + delta.y * up) * per_point;
+    }
+
+    /// The screen's right and up directions in the scene.
+    pub fn right_up(&self) -> (Vec3, Vec3) {
+        let forward = (self.target - self.eye()).normalize_or_zero();
+        let right = forward.cross(Vec3::Z).normalize_or_zero();
+        (right, right.cross(forward))
     }
 
     /// Zooms by a wheel movement of `scroll` points (positive: closer).

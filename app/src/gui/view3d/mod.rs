@@ -42,14 +42,24 @@ pub enum Handle {
     Goal,
 }
 
-/// A handle dragged to a new place this frame.
+/// A handle dragged this frame: moved, or (the goal with Ctrl) turned.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HandleMove {
-    /// Which.
-    pub handle: Handle,
-    /// Where to, absolute metres.
-    pub to: Point,
+pub enum HandleMove {
+    /// A handle moved to a new place.
+    Moved {
+        /// Which.
+        handle: Handle,
+        /// Where to, absolute metres.
+        to: Point,
+    },
+    /// The goal orientation turned by this rotation vector (radians about
+    /// its axis, in the scene's frame): a drag across the screen turns it
+    /// about the vertical, up and down about the screen's horizontal.
+    Turned([f64; 3]),
 }
+
+/// Radians of turn per point of a Ctrl-drag on the goal.
+const TURN_PER_POINT: f32 = 0.01;
 
 /// How close (points) a press must be to a handle to grab it.
 const GRAB_RADIUS: f32 = 14.0;
@@ -318,7 +328,8 @@ impl View3d {
 
     /// Grabs a handle of `ov` when a drag starts on it, and moves it while
     /// the drag lasts: on the horizontal plane through it, or up and down
-    /// with Shift.
+    /// with Shift; with Ctrl (Cmd) the goal of a run with orientation turns
+    /// instead (method.md section 12).
     fn drag_handle(
         &mut self,
         ui: &egui::Ui,
@@ -350,6 +361,13 @@ impl View3d {
             self.dragging = None;
             return None;
         }
+        if handle == Handle::Goal && ov.turns.is_some() && ui.input(|i| i.modifiers.command) {
+            let d = response.drag_delta() * TURN_PER_POINT;
+            let (right, _) = camera.right_up();
+            let v = glam::Vec3::Z * d.x + right * d.y;
+            return (v.length() > 0.0)
+                .then(|| HandleMove::Turned([f64::from(v.x), f64::from(v.y), f64::from(v.z)]));
+        }
         let current = match handle {
             Handle::Start => ov.start,
             Handle::Goal => ov.goal,
@@ -365,7 +383,7 @@ impl View3d {
             camera.hit_level(aspect, Vec2::new(rel.x, -rel.y), p.z, p, reach)
         }?;
         let to = Point::from_fn(|a, _| frame.origin[a] + f64::from(new_local[a]));
-        Some(HandleMove { handle, to })
+        Some(HandleMove::Moved { handle, to })
     }
 }
 
@@ -422,7 +440,7 @@ fn view3d_labels_ui(
                 " (none yet)"
             },
             if drawn.overlay.is_some() {
-                " · white: new target (drag start/goal, Shift: up)"
+                " · white: new target (drag start/goal, Shift: up, Ctrl: turn the goal)"
             } else {
                 ""
             },
