@@ -115,6 +115,8 @@ def load(path):
         for key in ("q0_new", "q_goal_new"):
             m["o." + key] = numbers(doc, "orientation." + key, (4,))
         m["o.w0"] = numbers(doc, "orientation.initial_angular_velocity", (3,))
+        if "gains_unit_time" in doc["orientation"]:  # its own gains (optional)
+            m["o.gains"] = tuple(numbers(doc, "orientation.gains_unit_time", (2,)))
         m["q"] = numbers(doc, "rollout.q", (n, 4))
     return m
 
@@ -218,7 +220,8 @@ def qexp(u):
 def integrate_orientation(m):
     """The orientation DMP as orientation.integration spells it; (n, 4) quaternions."""
     n, dt = m["n"], m["integration.dt"]
-    dm, km, goal = m["gains.unit_time.d"], m["gains.unit_time.k"], m["o.q_goal_new"]
+    dm, km = m.get("o.gains", (m["gains.unit_time.d"], m["gains.unit_time.k"]))
+    goal = m["o.q_goal_new"]
     k = np.arange(n, dtype=np.float64)
     f = forcing(k * dt, m["alpha_x"], m["basis.centres"], m["basis.widths"], m["o.weights"])
     q, w = m["o.q0_new"].copy(), m["o.w0"].copy()

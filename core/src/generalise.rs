@@ -106,7 +106,8 @@ pub struct Generalised {
     pub warnings: Vec<String>,
     /// The orientation path in unit time, when the primitive has one.
     pub orientation: Option<crate::orientation::OrientationRollout>,
-    /// The goal orientation it ran to, when one was asked for.
+    /// The goal orientation it ran to (its own when none was asked for; a
+    /// new one with the sign the run took), with an orientation DMP.
     pub orientation_goal: Option<crate::rotation::Q>,
 }
 
@@ -307,12 +308,7 @@ impl Primitive {
             )));
         }
         let orientation = match &self.orientation {
-            Some(o) => Some(o.rollout(
-                self.dm,
-                self.km,
-                target.start_orientation,
-                target.goal_orientation,
-            )),
+            Some(o) => Some(o.rollout(target.start_orientation, target.goal_orientation)),
             None if target.start_orientation.is_some() || target.goal_orientation.is_some() => {
                 return Err(Error::InvalidSetting(format!(
                     "{}: no orientation to run to a new start or goal orientation (its \
@@ -341,7 +337,10 @@ impl Primitive {
             final_error,
             warnings,
             orientation,
-            orientation_goal: target.goal_orientation,
+            orientation_goal: self
+                .orientation
+                .as_ref()
+                .map(|o| o.ends(target.start_orientation, target.goal_orientation).1),
         })
     }
 

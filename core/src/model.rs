@@ -454,9 +454,18 @@ impl Model {
             .map(|&i| self.projections[i].clone())
             .collect();
         let skill = Err("a resample's model: its skill error is not computed".to_owned());
+        let rot_kernels: Vec<Option<RotKernel>> = indices
+            .iter()
+            .map(|&i| self.rot_kernels[i].clone())
+            .collect();
+        // A resample without an oriented demo has no d_rot to weigh.
+        let mut settings = self.settings;
+        if rot_kernels.iter().all(Option::is_none) {
+            settings.k_rot = 0.0;
+        }
         Ok(Self {
             demos,
-            settings: self.settings,
+            settings,
             basis: self.basis.clone(),
             projections,
             similarity: self.similarity.subset(indices),
@@ -466,10 +475,7 @@ impl Model {
                 .iter()
                 .map(|&i| self.orientation[i].clone())
                 .collect(),
-            rot_kernels: indices
-                .iter()
-                .map(|&i| self.rot_kernels[i].clone())
-                .collect(),
+            rot_kernels,
             rot_fixed: self
                 .rot_fixed
                 .as_ref()

@@ -147,12 +147,19 @@ pub struct OrientationRollout {
 }
 
 impl OrientationRollout {
-    /// The largest angular acceleration norm, `alpha_peak`.
+    /// The largest angular acceleration norm, `alpha_peak` (NaN once any
+    /// step is: a diverged run).
     pub fn alpha_peak(&self) -> f64 {
         self.a
             .iter()
             .map(|a| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt())
-            .fold(0.0, f64::max)
+            .fold(0.0, |m, v| {
+                if v.is_nan() || m.is_nan() {
+                    f64::NAN
+                } else {
+                    m.max(v)
+                }
+            })
     }
 }
 
@@ -231,6 +238,9 @@ pub struct OrientationPrimitive {
     pub forcing: Vec<[f64; 3]>,
     /// LWR weights per axis at the primitive's gains.
     pub weights: [Vec<f64>; 3],
+    /// The gains `(D/M, K/M)` it runs at: the position's, or the model's
+    /// separate orientation gains ([`crate::dmp::DmpSettings::orientation_gains`]).
+    pub gains: (f64, f64),
     /// Its own start orientation (the smoothed `q(0)`).
     pub start: Q,
     /// Its own initial angular velocity, unit time.
@@ -240,43 +250,51 @@ pub struct OrientationPrimitive {
 }
 
 impl OrientationPrimitive {
-    /// Demo `i`'s orientation DMP at `(dm, km)`; `None` without one.
+    /// Demo `i`'s orientation DMP at the position gains `(dm, km)` (the
+    /// orientation's own where the model has them); `None` without one.
     pub fn of_demo(model: &crate::Model, i: usize, dm: f64, km: f64) -> Option<Self> {
         let prepared = model.demos().get(i)?.orientation.as_ref()?;
         let proj = model.orientation_projections(i)?;
+        let (dm, km) = model.orientation_gains(dm, km);
         Some(Self {
             forcing: forcing_at(proj, dm, km),
             weights: std::array::from_fn(|ax| proj.weights_at(ax, dm, km)),
+            gains: (dm, km),
             start: prepared.q[0],
             w0: prepared.w[0],
             goal: prepared.goal,
         })
     }
 
-    /// Runs it from `start` to `goal` (its own where `None`).
-    pub fn rollout(
-        &self,
-        dm: f64,
-        km: f64,
-        start: Option<Q>,
-        goal: Option<Q>,
-    ) -> OrientationRollout {
-        let start = start.unwrap_or(self.start);
-        // A new goal is taken in the start's hemisphere (q and -q are one
-        // orientation): the shorter way round, not a turn of over 180
-        // degrees that the sign of a typed quaternion would ask for. The
-        // demo's own goal keeps its sign (a demo may turn further).
-        let goal = match goal {
-            Some(g) if rotation::dot(g, start) < 0.0 => g.map(|c| -c),
-            Some(g) => g,
-            None => self.goal,
+    /// The start and goal a run from `start` to `goal` (its own where
+    /// `None`) takes. A quaternion and its negative are one orientation, so
+    /// a new one is taken with the sign that keeps the rotation the demo
+    /// makes: a new start in its own start's hemisphere, a new goal in the
+    /// start's (the shorter way round). The demo's own goal keeps its sign:
+    /// a demo may turn further than 180 degrees.
+    pub fn ends(&self, start: Option<Q>, goal: Option<Q>) -> (Q, Q) {
+        let towards = |q: Q, other: Q| {
+            if rotation::dot(q, other) < 0.0 {
+                q.map(|c| -c)
+            } else {
+                q
+            }
         };
+        let start = start.map_or(self.start, |s| towards(s, self.start));
+        let goal = goal.map_or(self.goal, |g| towards(g, start));
+        (start, goal)
+    }
+
+    /// Runs it at its gains from `start` to `goal` (its own where `None`;
+    /// signs as [`OrientationPrimitive::ends`] takes them).
+    pub fn rollout(&self, start: Option<Q>, goal: Option<Q>) -> OrientationRollout {
+        let (start, goal) = self.ends(start, goal);
         let target = OrientationTarget {
             start,
             w0: self.w0,
             goal,
         };
-        rollout_forcing(&self.forcing, dm, km, target)
+        rollout_forcing(&self.forcing, self.gains.0, self.gains.1, target)
     }
 }
 

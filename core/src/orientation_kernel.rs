@@ -1,7 +1,7 @@
 //! The orientation DMP's integration (method.md section 12) over `L` gain
 //! pairs that share D/M, for landscapes of `d_rot`, and the one step every
 //! orientation rollout takes: the orientation's counterpart of the
-//! position kernel in `model.rs`. Every lane does the arithmetic of a lone
+//! position kernel in `position_kernel.rs`. Every lane does the arithmetic of a lone
 //! pair, so a landscape point, [`crate::Model::evaluate`] and
 //! [`crate::orientation::rollout_forcing`] agree to the bit.
 //!
@@ -19,10 +19,11 @@
 //! [0, 1] (relative error below 1.6e-12, far inside the 1e-6 contract);
 //! `exp(u)` is its Taylor series in `|u|^2` while `|u|^2 <= 2.5e-3`
 //! (truncation below 1e-16). Where an argument leaves that range (a
-//! rotation to go of more than 180 degrees, an angular step over 0.05 rad)
-//! the lane takes `atan2`, `sin` and `cos`. Plain multiplications and
-//! additions, no fused multiply-add: the browser's build gives the same
-//! bits.
+//! rotation to go of more than 180 degrees, `|w| dt / 2` over 0.05 rad, an
+//! angular step over 0.1 rad) the lane takes `atan2`, `sin` and `cos` from
+//! the `libm` crate. Plain multiplications and additions, no fused
+//! multiply-add, and the same `libm` natively and in the browser: the
+//! browser's build gives the same bits.
 
 use crate::dmp::Projections;
 use crate::orientation::PreparedOrientation;
@@ -167,9 +168,13 @@ impl<const V: usize> Lanes<V> {
     pub(crate) fn angle(&self, target: Q) -> Lane<V> {
         let t = target.map(f64x4::splat);
         let r = &self.r;
+        let c = each::<V>(|v| {
+            (r[0][v] * t[0] + r[1][v] * t[1] + r[2][v] * t[2] + r[3][v] * t[3]).abs()
+        });
+        // min(1, c) as 1 - c >= 0; a NaN state (a diverged run) stays NaN.
         let x = each::<V>(|v| {
-            let c = (r[0][v] * t[0] + r[1][v] * t[1] + r[2][v] * t[2] + r[3][v] * t[3]).abs();
-            (ONE - c).max(f64x4::ZERO)
+            let x = ONE - c[v];
+            x.is_nan().bitselect(x, x.max(f64x4::ZERO))
         });
         let p = horner(&P, x);
         each(|v| TWO * (TWO * x[v]).sqrt() * p[v])
@@ -235,9 +240,8 @@ impl<const V: usize> Lanes<V> {
                 for l in 0..4 {
                     if sa[l] > EXP_SERIES_MAX {
                         let n = sa[l].sqrt();
-                        let (sin, c) = n.sin_cos();
-                        sn[l] = sin / n;
-                        cs[l] = c;
+                        sn[l] = libm::sin(n) / n;
+                        cs[l] = libm::cos(n);
                     }
                 }
                 sinc[v] = f64x4::new(sn);
@@ -301,13 +305,17 @@ const COS: [f64; 6] = [
 /// (method.md section 12's `log`, without its vector).
 fn exact_log_factor(r: Q) -> f64 {
     let n = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
-    if n == 0.0 { 0.0 } else { n.atan2(r[3]) / n }
+    if n == 0.0 {
+        0.0
+    } else {
+        libm::atan2(n, r[3]) / n
+    }
 }
 
 /// Integrates `kernel` at `(dm, km[l])` for each lane: `d_rot` (radians)
 /// and, when `PEAK`, `alpha_peak` per lane. The lanes go through time in
-/// chunks of [`LANES`] (a lone pair fills a chunk with copies of itself);
-/// each lane's numbers are the same whatever chunk it is in.
+/// chunks of four-wide vectors (a lone pair fills one with copies of
+/// itself); each lane's numbers are the same whatever chunk it is in.
 pub(crate) fn integrate<const L: usize, const PEAK: bool>(
     kernel: &RotKernel,
     dm: f64,

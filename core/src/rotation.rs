@@ -70,9 +70,14 @@ pub fn rotation_vector(a: Q, b: Q) -> [f64; 3] {
     log(mul(a, conj(b))).map(|c| 2.0 * c)
 }
 
-/// The angle between two orientations, `2 acos(min(1, |a . b|))`, radians.
+/// The angle between two orientations, `2 acos(min(1, |a . b|))`, radians
+/// (NaN for a NaN quaternion).
 pub fn angle(a: Q, b: Q) -> f64 {
-    2.0 * dot(a, b).abs().min(1.0).acos()
+    let d = dot(a, b).abs();
+    if d.is_nan() {
+        return f64::NAN;
+    }
+    2.0 * d.min(1.0).acos()
 }
 
 /// Spherical linear interpolation from `a` (t = 0) to `b` (t = 1) along

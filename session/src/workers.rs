@@ -454,13 +454,25 @@ impl<T: Transport> Dispatcher<T> {
     fn hand_out(&mut self, owner: &mut dyn Handout) {
         let generation = owner.generation();
         let mut exhausted = false;
-        for i in 0..self.alive.len() {
-            while !exhausted && self.alive[i] && self.in_flight[i].len() < owner.in_flight() {
+        // One piece per worker with room per pass, so that the pieces (in
+        // the owner's order: coarse tiles first) spread over the workers.
+        let mut failed = vec![false; self.alive.len()];
+        let mut posted = true;
+        while posted && !exhausted {
+            posted = false;
+            for i in 0..self.alive.len() {
+                if !self.alive[i] || failed[i] || self.in_flight[i].len() >= owner.in_flight() {
+                    continue;
+                }
                 let Some((piece, payload)) = owner.next() else {
                     exhausted = true;
                     break;
                 };
+                let held = self.in_flight[i].len();
                 self.post(i, owner, generation, piece, payload);
+                // A worker that cannot take a piece gets no more this time.
+                failed[i] = self.in_flight[i].len() == held;
+                posted |= !failed[i];
             }
         }
         if !exhausted || !owner.copies() {

@@ -340,7 +340,7 @@ fn orientation_summary(s: &mut String, model: &Model, args: &Args, runs: &[Run])
         let _ = writeln!(
             s,
             "{} orientation: d_rot {d_rot}, end {end:.4} deg from the goal orientation, \
-             alpha_peak {:.3} rad (unit time)",
+             alpha_peak {:.3} rad per unit time squared",
             r.primitive.name,
             path.alpha_peak()
         );

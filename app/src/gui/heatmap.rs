@@ -46,7 +46,7 @@ pub struct MapInput<'a> {
     pub grid: Grid,
     /// Colour on a log scale.
     pub log_colour: bool,
-    /// Read-out of `(sum d, S, J, a_peak, E)` at a grid point.
+    /// Read-out of `(sum d, S, J, a_peak, E, sum d_rot)` at a grid point.
     pub readout: &'a dyn Fn(usize, usize) -> [f64; 6],
     /// Points to mask (grey): `(a_peak per point, limit)`, those above it.
     pub mask: Option<(&'a [f64], f64)>,

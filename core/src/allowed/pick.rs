@@ -10,6 +10,7 @@ use crate::model::{Model, zeta};
 use crate::robot::RobotGains;
 
 impl Pick {
+    /// The pick with its reason in words.
     pub(super) fn with_why(mut self, why: String) -> Self {
         self.why = why;
         self
@@ -18,11 +19,17 @@ impl Pick {
 
 /// What a pick looks at.
 pub(super) struct Context<'a> {
+    /// The model the points are evaluated with.
     pub(super) model: &'a Model,
+    /// The complete landscape.
     pub(super) landscape: &'a Landscape,
+    /// J's refined optimum and its k.
     pub(super) extraction: &'a Extraction,
+    /// The acceptable region.
     pub(super) acceptable: &'a Acceptable,
+    /// An a_peak limit every pick keeps to.
     pub(super) limit: Option<f64>,
+    /// The demos' mean duration, seconds (the robot's gains).
     pub(super) duration: f64,
 }
 
@@ -34,6 +41,7 @@ impl Context<'_> {
         })
     }
 
+    /// The gains `rule` picks, evaluated, or why there are none.
     pub(super) fn pick(&self, rule: PickRule) -> Result<Pick, String> {
         let (dm, km) = match rule {
             PickRule::Optimum => self.optimum()?,

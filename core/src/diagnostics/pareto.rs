@@ -1,6 +1,8 @@
 //! The trade-off between fidelity and similarity: the Pareto front of
 //! `(sum d, S)` over the grid (method.md section 9). J's optimum for any k
-//! lies on it, where the line of slope `-k` touches it.
+//! lies on it, where the line of slope `-k` touches it (J as the paper has
+//! it: with `--k-rot` J also weighs the orientation, which this front does
+//! not show).
 
 /// The grid points (indices into `d_sum` and `s`) no other point beats in
 /// both sum d and S, by increasing sum d (and so decreasing S). Points with

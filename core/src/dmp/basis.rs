@@ -38,12 +38,9 @@ pub struct DmpSettings {
     /// app computes the map when it is shown (or `k_rot` needs it); the
     /// CLI always. Each evaluated point (Table I, the operating point) has
     /// its d_rot either way.
-    #[serde(default = "yes")]
+    /// (Settings saved before the option read as off, as the app's default.)
+    #[serde(default)]
     pub orientation_map: bool,
-}
-
-fn yes() -> bool {
-    true
 }
 
 impl Default for DmpSettings {

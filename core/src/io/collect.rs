@@ -8,6 +8,7 @@
 use std::collections::BTreeMap;
 
 use super::mcap_file::{LoadOptions, Loaded, UpAxis};
+use super::orientation_check::OrientationCounts;
 use super::{ChannelSchema, MessageDecoder, decoder_for};
 use crate::demo::{RawDemo, TimeSource};
 use crate::error::{Error, Location, Result};
@@ -30,14 +31,8 @@ pub(crate) struct Stream {
     /// Each sample's orientation, already in dmpscope's z-up frame; `None`
     /// where the message has none or an unusable one.
     orientations: Vec<Option<Quat>>,
-    /// The first unusable orientation (zero or not finite): its message's
-    /// index in the file and its value.
-    first_bad_orientation: Option<(usize, [f64; 4])>,
-    /// How many orientations were unusable, and how many of them exactly
-    /// zero.
-    bad_orientations: (usize, usize),
-    /// How many samples carried no orientation at all.
-    missing_orientations: usize,
+    /// What its orientations say about themselves.
+    turns: OrientationCounts,
 }
 
 /// One stream of messages: the channels of one topic and schema (a merged
@@ -337,12 +332,9 @@ impl<'o> Collector<'o> {
                 .positions
                 .push(options.up.to_z_up(sample.position).into());
             let orientation = sample.orientation.and_then(crate::geom::quat_from_xyzw);
-            stream.missing_orientations += usize::from(sample.orientation.is_none());
-            if let (Some(q), None) = (sample.orientation, orientation) {
-                stream.first_bad_orientation.get_or_insert((index, q));
-                stream.bad_orientations.0 += 1;
-                stream.bad_orientations.1 += usize::from(q == [0.0; 4]);
-            }
+            stream
+                .turns
+                .record(index, sample.orientation, orientation.is_some());
             stream
                 .orientations
                 .push(orientation.map(|q| options.up.orientation_to_z_up(q)));
@@ -423,7 +415,12 @@ impl<'o> Collector<'o> {
                 continue;
             }
             let given = key.is_none().then(|| names.get(&topic).cloned()).flatten();
-            let said = bad_orientations(label, &topic, key.as_deref(), &s, options)?;
+            let source = key
+                .as_deref()
+                .map_or_else(|| topic.clone(), |k| format!("{topic}:{k}"));
+            let said = s
+                .turns
+                .verdict(label, &source, options.drop_bad_orientation)?;
             let mut demo = finish_stream(label, &file_name, topic, key, s);
             if let Some(said) = said {
                 warnings.push(said);
@@ -541,54 +538,6 @@ fn cut_short(demos: &[RawDemo]) -> String {
 
 /// Chooses the time source of one stream (method.md section 2.1): header
 /// stamps, unless one is missing or all are zero, then log time.
-/// What a stream's unusable orientations (zero or not finite) mean
-/// (method.md section 12): none, nothing to say; every one exactly zero, a
-/// source without rotation (ROS 1's default quaternion), said; else the
-/// error naming file, topic and the first such sample, or with
-/// `drop_bad_orientation` a warning and a demo without orientation.
-fn bad_orientations(
-    label: &str,
-    topic: &str,
-    key: Option<&str>,
-    s: &Stream,
-    options: &LoadOptions,
-) -> Result<Option<String>> {
-    let source = key.map_or_else(|| topic.to_owned(), |k| format!("{topic}:{k}"));
-    let n = s.orientations.len();
-    let missing = s.missing_orientations;
-    let Some((index, q)) = s.first_bad_orientation else {
-        return Ok((missing > 0 && missing < n).then(|| {
-            format!(
-                "{label}: {source}: {missing} of {n} samples carry no orientation: the demo \
-                 has none"
-            )
-        }));
-    };
-    let (bad, zero) = s.bad_orientations;
-    if zero == n {
-        return Ok(Some(format!(
-            "{label}: {source}: every orientation is the zero quaternion (a source that \
-             sends no rotation): the demo has no orientation"
-        )));
-    }
-    if options.drop_bad_orientation {
-        return Ok(Some(format!(
-            "{label}: {source}: {bad} of {n} samples have no usable orientation (zero or not \
-             finite, the first at sample {index}: {q:?}): the demo has none \
-             (--drop-bad-orientation)"
-        )));
-    }
-    Err(Error::NonFinite {
-        at: Location::file(label).topic(source).sample(index),
-        field: if q.iter().all(|c| c.is_finite()) {
-            "orientation (a zero quaternion; --drop-bad-orientation loads the positions \
-             without orientation)"
-        } else {
-            "orientation (--drop-bad-orientation loads the positions without orientation)"
-        },
-    })
-}
-
 fn finish_stream(
     label: &str,
     file_name: &str,

@@ -133,8 +133,8 @@ pub struct RolloutDoc {
     pub q: Option<Vec<[f64; 4]>>,
 }
 
-/// The orientation DMP (method.md section 12): the same phase, basis,
-/// gains and grid as the position.
+/// The orientation DMP (method.md section 12): the same phase, basis and
+/// grid as the position, at the position's gains or its own.
 #[derive(Clone, Debug, Serialize)]
 pub struct OrientationDoc {
     /// The transformation system.
@@ -153,6 +153,9 @@ pub struct OrientationDoc {
     pub q_goal_new: [f64; 4],
     /// `w(0)` in unit time (rad per unit time), used unchanged.
     pub initial_angular_velocity: [f64; 3],
+    /// The orientation's gains `[D_M, K_M]` in unit time: the position's,
+    /// or separate ones (`--orientation-gains`).
+    pub gains_unit_time: [f64; 2],
 }
 
 /// One exported DMP.
@@ -362,6 +365,7 @@ fn orientation_doc(primitive: &Primitive, out: &Generalised) -> Option<Orientati
         q0_new: *path.q.first()?,
         q_goal_new: out.orientation_goal.unwrap_or(o.goal),
         initial_angular_velocity: o.w0,
+        gains_unit_time: [o.gains.0, o.gains.1],
     })
 }
 

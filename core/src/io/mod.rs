@@ -18,6 +18,7 @@ pub mod foxglove_json;
 pub mod foxglove_proto;
 pub mod foxglove_schemas;
 pub mod mcap_file;
+mod orientation_check;
 pub mod ros1;
 pub mod ros2;
 pub mod ros_traj;

@@ -133,7 +133,6 @@ fn maps(
     let log_colour = s.log_colour;
     let limit = s.a_peak_limit;
     let mut op = s.op;
-    let second = view.second_map;
     let [c_j, c_d, c_s, c_e, c_x] = &mut view.maps;
     let mut map = |ui: &mut egui::Ui, cache, which: Map, side: f32| {
         let on_j = which == Map::J;
@@ -165,57 +164,85 @@ fn maps(
         };
         heatmap::show(ui, cache, &input, &markers, &mut op, side);
     };
-    // J on the left; on the right, where the window is wide enough, two by
-    // two: sum d and S, then E and the chosen quantity (a_peak by default);
-    // else sum d above the chosen quantity (S by default, or E, a_peak),
-    // within `height`.
-    let width = ui.available_width();
-    let big = heatmap::side_for(egui::vec2(width * 0.5, height));
-    let quad = heatmap::side_for(egui::vec2(width * 0.25 - 6.0, height * 0.5 - 12.0));
-    let fixed: &[Quantity] = if quad >= MIN_QUAD_SIDE {
-        &[Quantity::DSum, Quantity::S, Quantity::ESum]
-    } else {
-        &[Quantity::DSum]
-    };
-    // d_rot only where a demo has an orientation.
-    let oriented = session.model().is_some_and(|m| m.has_orientation());
-    let others: Vec<Quantity> = quantity::ALL
-        .into_iter()
-        .filter(|q| !fixed.contains(q) && (oriented || *q != Quantity::DRotSum))
-        .collect();
-    let mut chosen = match second {
-        Map::Quantity(q) if others.contains(&q) => second,
-        _ => others.first().map_or(second, |&q| Map::Quantity(q)),
-    };
+    let layout = Layout::of(ui.available_width(), height, session, view.second_map);
+    let mut chosen = layout.shown;
     ui.horizontal_top(|ui| {
-        ui.vertical(|ui| map(ui, c_j, Map::J, big));
-        ui.vertical(|ui| {
-            if quad >= MIN_QUAD_SIDE {
+        ui.vertical(|ui| map(ui, c_j, Map::J, layout.big));
+        ui.vertical(|ui| match layout.quad {
+            Some(side) => {
                 ui.horizontal_top(|ui| {
-                    ui.vertical(|ui| map(ui, c_d, Map::Quantity(Quantity::DSum), quad));
-                    ui.vertical(|ui| map(ui, c_s, Map::Quantity(Quantity::S), quad));
+                    ui.vertical(|ui| map(ui, c_d, Map::Quantity(Quantity::DSum), side));
+                    ui.vertical(|ui| map(ui, c_s, Map::Quantity(Quantity::S), side));
                 });
                 ui.horizontal_top(|ui| {
-                    ui.vertical(|ui| map(ui, c_e, Map::Quantity(Quantity::ESum), quad));
+                    ui.vertical(|ui| map(ui, c_e, Map::Quantity(Quantity::ESum), side));
                     ui.vertical(|ui| {
-                        choose(ui, &others, &mut chosen);
-                        map(ui, c_x, chosen, quad);
+                        choose(ui, &layout.others, &mut chosen);
+                        map(ui, c_x, chosen, side);
                     });
                 });
-            } else {
-                let small = heatmap::side_for(egui::vec2(width * 0.5, height * 0.5 - 12.0));
-                map(ui, c_d, Map::Quantity(Quantity::DSum), small);
-                choose(ui, &others, &mut chosen);
-                map(ui, c_s, chosen, small);
+            }
+            None => {
+                map(ui, c_d, Map::Quantity(Quantity::DSum), layout.small);
+                choose(ui, &layout.others, &mut chosen);
+                map(ui, c_s, chosen, layout.small);
             }
         });
     });
-    view.second_map = chosen;
+    // Only the user's choice is kept (not what a layout showed instead).
+    if chosen != layout.shown {
+        view.second_map = chosen;
+    }
     // The d_rot map is computed when it is first shown.
     if chosen == Map::Quantity(Quantity::DRotSum) {
         s.dmp.orientation_map = true;
     }
     s.op = op;
+}
+
+/// Where the maps go: J on the left; on the right, where the window is
+/// wide enough, two by two (sum d and S, then E and a chosen quantity,
+/// a_peak by default), else sum d above a chosen one (S by default, or E,
+/// a_peak), within the height given.
+struct Layout {
+    /// J's side.
+    big: f32,
+    /// The small maps' side two by two, where they fit.
+    quad: Option<f32>,
+    /// The small maps' side stacked.
+    small: f32,
+    /// What the chosen map may show (d_rot where a demo has orientation).
+    others: Vec<Quantity>,
+    /// What it shows: the user's choice where offered, else the first.
+    shown: Map,
+}
+
+impl Layout {
+    fn of(width: f32, height: f32, session: &Session, choice: Map) -> Self {
+        let quad = heatmap::side_for(egui::vec2(width * 0.25 - 6.0, height * 0.5 - 12.0));
+        let quad = (quad >= MIN_QUAD_SIDE).then_some(quad);
+        let fixed: &[Quantity] = if quad.is_some() {
+            &[Quantity::DSum, Quantity::S, Quantity::ESum]
+        } else {
+            &[Quantity::DSum]
+        };
+        let oriented = session.model().is_some_and(|m| m.has_orientation());
+        let others: Vec<Quantity> = quantity::ALL
+            .into_iter()
+            .filter(|q| !fixed.contains(q) && (oriented || *q != Quantity::DRotSum))
+            .collect();
+        let shown = match choice {
+            Map::Quantity(q) if others.contains(&q) => choice,
+            _ => others.first().map_or(choice, |&q| Map::Quantity(q)),
+        };
+        Self {
+            big: heatmap::side_for(egui::vec2(width * 0.5, height)),
+            quad,
+            small: heatmap::side_for(egui::vec2(width * 0.5, height * 0.5 - 12.0)),
+            others,
+            shown,
+        }
+    }
 }
 
 /// Buttons that choose which of `others` a small map shows.

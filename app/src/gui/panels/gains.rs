@@ -69,13 +69,7 @@ pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let flat = session.diagnostics().map(|d| d.diagnostics.flat);
     if flat == Some(true) {
         // No number is presented as extracted when J is flat.
-        let allow = session.allowed().map_or(String::new(), |v| {
-            format!(": {}", v.allowed.acceptable.text())
-        });
-        ui.colored_label(
-            Color32::from_rgb(240, 180, 80),
-            format!("J is flat (see Diagnostics), so the data allow a region{allow}; the pick below is in it."),
-        );
+        flat_ui(ui, session);
         ui.weak(format!(
             "J is least at (M:D:K) = 1 : {:.3} : {:.3}, J {:.4}, barely below the box's boundary",
             x.eval.dm, x.eval.km, x.j
@@ -110,4 +104,18 @@ pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             }
         }
     }
+}
+
+/// What a flat J means: the region the data allow, the pick below in it.
+fn flat_ui(ui: &mut egui::Ui, session: &crate::session::Session) {
+    let allow = session.allowed().map_or(String::new(), |v| {
+        format!(": {}", v.allowed.acceptable.text())
+    });
+    ui.colored_label(
+        Color32::from_rgb(240, 180, 80),
+        format!(
+            "J is flat (see Diagnostics), so the data allow a region{allow}; the pick below is \
+             in it."
+        ),
+    );
 }

@@ -317,7 +317,7 @@ pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
             (demo_paths.get(sel), input.demo_turns.get(sel)),
             (regen_paths.get(sel), input.regen_turns.get(sel)),
         ];
-        for (path, turns) in cursor_turns {
+        for (path, turns) in cursor_turns.into_iter().filter(|_| input.triads) {
             if let (Some(path), Some(Some(turns))) = (path, turns)
                 && let (Some(p), Some(q)) = (at_time(path, input.t), nearest(turns, input.t))
             {
@@ -504,7 +504,7 @@ fn generalised_run(out: &mut SegmentList, frame: &Frame, g: &SceneGen<'_>, input
         if input.triads {
             out.triads_along(&path, turns, 0.5 * step, 0.22 * step, 1.5 * ppp, 0.9);
         }
-        // The new goal orientation beside its ring, always.
+        // The orientation the run ends at, beside its ring, always.
         if let (Some(pg), Some(qg)) = (path.last(), turns.last()) {
             out.triad(*pg, *qg, 0.5 * step, 3.0 * ppp, 1.0);
         }
