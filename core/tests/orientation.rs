@@ -127,8 +127,14 @@ fn every_pose_schema_keeps_its_orientation_and_a_point_has_none() {
         "/tf",
         &|t, p, q| ros1::encode_tf_message(&[transform(t, "world", "hand", p, q)]),
     );
+    let r2_odometry = mcap(
+        ("nav_msgs/msg/Odometry", "ros2msg", "cdr"),
+        "/odom",
+        &|t, p, q| ros2::encode_odometry(t, "odom", p, q),
+    );
     for (label, bytes) in [
         ("r2_pose.mcap", r2_pose),
+        ("r2_odometry.mcap", r2_odometry),
         ("r1_pose.mcap", r1_pose),
         ("r2_tf.mcap", r2_tf),
         ("r1_tf.mcap", r1_tf),

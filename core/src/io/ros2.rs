@@ -155,6 +155,7 @@ pub fn decoder(schema_name: &str) -> Option<Box<dyn MessageDecoder>> {
         "geometry_msgs/msg/PointStamped" => Some(Box::new(SinglePose(decode_point_stamped))),
         "geometry_msgs/msg/TransformStamped" => Some(Box::new(TransformStampedDecoder)),
         "tf2_msgs/msg/TFMessage" => Some(Box::new(TfMessageDecoder)),
+        "nav_msgs/msg/Odometry" => Some(Box::new(SinglePose(decode_odometry))),
         _ => None,
     }
 }
@@ -251,6 +252,23 @@ pub fn decode_pose_with_covariance_stamped(message: &[u8]) -> Result<PoseSample<
     let (position, orientation) = pose(&mut r)?;
     for _ in 0..36 {
         r.f64("pose.covariance")?;
+    }
+    Ok(PoseSample::single(stamp_ns, position, Some(orientation)))
+}
+
+/// Decodes `nav_msgs/msg/Odometry`: header, the child frame id, the pose
+/// with its 36 covariance entries, then the twist with its own (read past,
+/// but they must be there).
+pub fn decode_odometry(message: &[u8]) -> Result<PoseSample<'static>, String> {
+    let mut r = CdrReader::new(message)?;
+    let stamp_ns = header(&mut r)?;
+    r.string("child_frame_id")?;
+    let (position, orientation) = pose(&mut r)?;
+    for _ in 0..36 {
+        r.f64("pose.covariance")?;
+    }
+    for _ in 0..(6 + 36) {
+        r.f64("twist")?;
     }
     Ok(PoseSample::single(stamp_ns, position, Some(orientation)))
 }
@@ -384,6 +402,24 @@ pub fn encode_pose_with_covariance_stamped(
     write_pose(&mut w, position, [0.0, 0.0, 0.0, 1.0]);
     for i in 0..36 {
         w.f64(if i % 7 == 0 { 1e-6 } else { 0.0 });
+    }
+    w.finish()
+}
+
+/// Encodes `nav_msgs/msg/Odometry` (child frame `base_link`, zero twist
+/// and covariances).
+pub fn encode_odometry(
+    stamp_ns: i64,
+    frame_id: &str,
+    position: [f64; 3],
+    orientation: [f64; 4],
+) -> Vec<u8> {
+    let mut w = CdrWriter::new();
+    write_header(&mut w, stamp_ns, frame_id);
+    w.string("base_link");
+    write_pose(&mut w, position, orientation);
+    for _ in 0..(36 + 6 + 36) {
+        w.f64(0.0);
     }
     w.finish()
 }
