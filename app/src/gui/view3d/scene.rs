@@ -573,6 +573,34 @@ mod tests {
     }
 
     #[test]
+    fn a_quaternion_and_its_negative_draw_the_same_triads() {
+        // Sign flips between or within demos (method.md section 12) change
+        // no segment of the picture.
+        let path: Vec<Vec3> = (0..200)
+            .map(|k| Vec3::new(k as f32 * 1e-3, 0.0, 0.0))
+            .collect();
+        let turns: Vec<Quat> = (0..200)
+            .map(|k| {
+                let a = 0.004 * k as f64;
+                [0.3 * a.sin(), 0.2 * a.sin(), a.sin(), a.cos()]
+            })
+            .collect();
+        let flipped: Vec<Quat> = turns
+            .iter()
+            .enumerate()
+            .map(|(k, q)| if k % 3 == 0 { q.map(|c| -c) } else { *q })
+            .collect();
+        let draw = |turns: &[Quat]| {
+            let mut list = SegmentList::default();
+            list.triads_along(&path, turns, 0.02, 0.01, 1.0, 1.0);
+            list.segments
+        };
+        let (a, b) = (draw(&turns), draw(&flipped));
+        assert!(a.len() > 10);
+        assert_eq!(a, b);
+    }
+
+    #[test]
     fn the_cursor_interpolates_in_unit_time() {
         let points = [Vec3::ZERO, Vec3::X, Vec3::new(2.0, 0.0, 0.0)];
         assert_eq!(at_time(&points, 0.25), Some(Vec3::new(0.5, 0.0, 0.0)));
