@@ -270,7 +270,7 @@ pub struct InputArgs {
     pub k_rot: f64,
     /// Separate gains for the orientation DMP (default: the position's, one
     /// pair for the pose as movement_primitives' CartesianDMP has).
-    #[arg(long, num_args = 2, value_names = ["DM", "KM"])]
+    #[arg(long, num_args = 2, value_names = ["DM", "KM"], allow_negative_numbers = true)]
     pub orientation_gains: Option<Vec<f64>>,
 }
 
