@@ -290,7 +290,7 @@ impl Model {
     /// demo has an orientation).
     fn d_rot_sum_of<const L: usize>(&self, dm: f64, km: [f64; L]) -> [f64; L] {
         if let Some(fixed) = &self.rot_fixed {
-            return [fixed_sum(fixed); L];
+            return [degrees_sum(fixed.iter().map(|r| r.map(|r| r.0))); L];
         }
         let mut sum = [0.0; L];
         let mut any = false;
@@ -338,17 +338,13 @@ impl Model {
             })
             .collect();
         let d_rot: Vec<f64> = rot.iter().map(|r| r.0).collect();
-        // Summed over the demos with orientation, in order, as the lanes do.
-        let with = d_rot
-            .iter()
-            .zip(&self.rot_kernels)
-            .filter(|(_, k)| k.is_some())
-            .map(|(d, _)| *d);
-        let d_rot_sum = if self.rot_kernels.iter().any(Option::is_some) {
-            with.sum::<f64>().to_degrees()
-        } else {
-            f64::NAN
-        };
+        // Over the demos with orientation, in order, as the lanes sum.
+        let d_rot_sum = degrees_sum(
+            self.rot_kernels
+                .iter()
+                .zip(&d_rot)
+                .map(|(k, d)| k.as_ref().map(|_| *d)),
+        );
         PointEval {
             dm,
             km,
@@ -526,14 +522,12 @@ impl Model {
     }
 }
 
-/// `sum d_rot` in degrees of fixed per-demo errors (NaN when none has one).
-fn fixed_sum(fixed: &[Option<(f64, f64)>]) -> f64 {
-    let with: Vec<f64> = fixed.iter().flatten().map(|r| r.0).collect();
-    if with.is_empty() {
-        f64::NAN
-    } else {
-        with.iter().sum::<f64>().to_degrees()
-    }
+/// The sum in degrees of the values present (radians), in order; NaN when
+/// none is: `sum d_rot` over the demos with orientation.
+fn degrees_sum(values: impl Iterator<Item = Option<f64>>) -> f64 {
+    let mut any = false;
+    let sum: f64 = values.flatten().inspect(|_| any = true).sum();
+    if any { sum.to_degrees() } else { f64::NAN }
 }
 
 /// Checks `k_rot` and the orientation gains: finite, `k_rot >= 0`, gains

@@ -6,6 +6,7 @@
 //! moves.
 
 use dmpscope_core::landscape::{Axis, AxisScale, Grid};
+use dmpscope_core::quantity::{self, PointValues};
 use eframe::egui::{
     self, Align2, Color32, ColorImage, FontId, Pos2, Rect, Sense, Stroke, TextureHandle,
     TextureOptions, Vec2,
@@ -46,8 +47,8 @@ pub struct MapInput<'a> {
     pub grid: Grid,
     /// Colour on a log scale.
     pub log_colour: bool,
-    /// Read-out of `(sum d, S, J, a_peak, E, sum d_rot)` at a grid point.
-    pub readout: &'a dyn Fn(usize, usize) -> [f64; 6],
+    /// Read-out of J and every quantity of the table at a grid point.
+    pub readout: &'a dyn Fn(usize, usize) -> (f64, PointValues),
     /// Points to mask (grey): `(a_peak per point, limit)`, those above it.
     pub mask: Option<(&'a [f64], f64)>,
     /// Draw the iso-zeta lines.
@@ -419,26 +420,27 @@ fn heatmap_points_ui(area: &MapArea, cloud: &[(f64, f64)], markers: &[Marker], o
     painter.circle_stroke(p, 5.0, Stroke::new(1.5, Color32::BLACK));
 }
 
-/// The read-out of sum d, S, J, a_peak, E and sum d_rot under the pointer, and
-/// whether the point is in the acceptable region.
+/// The read-out of J and every quantity of the table (those computed there)
+/// under the pointer, and whether the point is in the acceptable region.
 fn heatmap_readout_ui(area: &MapArea, response: &egui::Response, input: &MapInput<'_>) {
     if let Some(pos) = response.hover_pos() {
         let (dm, km) = area.at(pos);
         let (i, j) = (nearest(&area.grid.dm, dm), nearest(&area.grid.km, km));
-        let [d, s, jv, a, e, rot] = (input.readout)(i, j);
+        let (jv, values) = (input.readout)(i, j);
         let zeta = dmpscope_core::model::zeta(dm, km);
         let inside = match input.region {
             Some(r) if r.get(i * area.grid.km.n + j) == Some(&true) => "\nin the acceptable region",
             _ => "",
         };
-        let rot = if rot.is_nan() {
-            String::new()
-        } else {
-            format!("\nsum d_rot {rot:.4} deg")
-        };
-        response.clone().on_hover_text_at_pointer(format!(
-            "D/M {dm:.3}  K/M {km:.3}  zeta {zeta:.3}\nsum d {d:.5} m\nS {s:.5}\nJ {jv:.5}\nmax a_peak {a:.3} m/s²\nE {e:.5} m{rot}{inside}"
-        ));
+        let mut text = format!("D/M {dm:.3}  K/M {km:.3}  zeta {zeta:.3}\nJ {jv:.5}");
+        for q in quantity::ALL {
+            let (v, about) = (values[q.index()], q.about());
+            if !v.is_nan() {
+                text.push_str(&format!("\n{} {v:.5} {}", about.label, about.unit));
+            }
+        }
+        text.push_str(inside);
+        response.clone().on_hover_text_at_pointer(text);
     }
 }
 

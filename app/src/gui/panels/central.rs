@@ -64,11 +64,9 @@ pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
                     to,
                 } => spec.target.goal = Some(to),
                 HandleMove::Turned(v) => {
-                    // The run's goal orientation (its own unless one was
-                    // asked for), turned in the scene's frame.
-                    let own =
-                        generalised.and_then(|g| g.out.orientation.as_ref()?.q.last().copied());
-                    if let Some(q) = spec.target.goal_orientation.or(own) {
+                    // The goal orientation the run went to, turned in the
+                    // scene's frame.
+                    if let Some(q) = generalised.and_then(|g| g.out.orientation_goal) {
                         let turn = dmpscope_core::rotation::exp(v.map(|c| 0.5 * c));
                         spec.target.goal_orientation = Some(dmpscope_core::rotation::normalised(
                             dmpscope_core::rotation::mul(turn, q),
@@ -117,14 +115,7 @@ fn maps(
     let n_km = grid.km.n;
     let readout = |i: usize, j: usize| {
         let idx = i * n_km + j;
-        [
-            shown.values(Quantity::DSum)[idx],
-            shown.values(Quantity::S)[idx],
-            shown.j[idx],
-            shown.values(Quantity::APeak)[idx],
-            shown.values(Quantity::ESum)[idx],
-            shown.values(Quantity::DRotSum)[idx],
-        ]
+        (shown.j[idx], quantity::ALL.map(|q| shown.values(q)[idx]))
     };
     let region = session
         .allowed()
