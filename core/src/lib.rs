@@ -35,6 +35,7 @@ pub mod generalise;
 pub mod geom;
 pub mod group;
 pub mod io;
+pub mod kernel_dispatch;
 pub mod landscape;
 pub mod mapping;
 pub mod model;

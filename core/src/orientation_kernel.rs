@@ -321,14 +321,32 @@ pub(crate) fn integrate<const L: usize, const PEAK: bool>(
     dm: f64,
     km: [f64; L],
 ) -> ([f64; L], [f64; L]) {
-    if L >= 4 * V_LANDSCAPE {
-        integrate_in::<L, PEAK, V_LANDSCAPE>(kernel, dm, km)
-    } else {
-        integrate_in::<L, PEAK, 1>(kernel, dm, km)
+    crate::kernel_dispatch::run(Call::<L, PEAK> { kernel, dm, km })
+}
+
+/// [`integrate`]'s arguments, as a call the dispatch compiles per
+/// instruction set.
+struct Call<'a, const L: usize, const PEAK: bool> {
+    kernel: &'a RotKernel,
+    dm: f64,
+    km: [f64; L],
+}
+
+impl<const L: usize, const PEAK: bool> crate::kernel_dispatch::Kernel for Call<'_, L, PEAK> {
+    type Output = ([f64; L], [f64; L]);
+
+    #[inline(always)]
+    fn call(self) -> Self::Output {
+        if L >= 4 * V_LANDSCAPE {
+            integrate_in::<L, PEAK, V_LANDSCAPE>(self.kernel, self.dm, self.km)
+        } else {
+            integrate_in::<L, PEAK, 1>(self.kernel, self.dm, self.km)
+        }
     }
 }
 
 /// [`integrate`] in chunks of `4 V` lanes.
+#[inline(always)]
 fn integrate_in<const L: usize, const PEAK: bool, const V: usize>(
     kernel: &RotKernel,
     dm: f64,
@@ -349,6 +367,7 @@ fn integrate_in<const L: usize, const PEAK: bool, const V: usize>(
 
 /// [`integrate`] for one chunk of `4 V` lanes: `d_rot` and `alpha_peak`
 /// per lane.
+#[inline(always)]
 fn integrate_chunk<const PEAK: bool, const V: usize>(
     kernel: &RotKernel,
     dm: f64,

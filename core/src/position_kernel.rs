@@ -67,6 +67,33 @@ pub(crate) fn integrate<const L: usize, const PEAK: bool>(
     dm: f64,
     km: [f64; L],
 ) -> ([f64; L], [f64; L]) {
+    crate::kernel_dispatch::run(Lanes::<L, PEAK> { kernel, dm, km })
+}
+
+/// [`integrate`]'s arguments, as a call the dispatch compiles per
+/// instruction set.
+struct Lanes<'a, const L: usize, const PEAK: bool> {
+    kernel: &'a DemoKernel,
+    dm: f64,
+    km: [f64; L],
+}
+
+impl<const L: usize, const PEAK: bool> crate::kernel_dispatch::Kernel for Lanes<'_, L, PEAK> {
+    type Output = ([f64; L], [f64; L]);
+
+    #[inline(always)]
+    fn call(self) -> Self::Output {
+        integrate_lanes::<L, PEAK>(self.kernel, self.dm, self.km)
+    }
+}
+
+/// [`integrate`] on the instruction set it is inlined into.
+#[inline(always)]
+fn integrate_lanes<const L: usize, const PEAK: bool>(
+    kernel: &DemoKernel,
+    dm: f64,
+    km: [f64; L],
+) -> ([f64; L], [f64; L]) {
     let n = kernel.steps.len();
     let dt = 1.0 / (n - 1) as f64;
     let dt2 = dt * dt;

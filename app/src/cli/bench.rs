@@ -7,6 +7,7 @@ use std::time::Instant;
 use dmpscope_core::demo::median;
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::io::{LoadOptions, SourceData, load_source};
+use dmpscope_core::kernel_dispatch::{instruction_set, set_avx512};
 use dmpscope_core::landscape::{Axis, Grid};
 use dmpscope_core::{PrepSettings, Unusable, landscape};
 
@@ -71,7 +72,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let without_e = std::sync::Arc::new(model.without_skill_error());
     let mut land_ms = Vec::new();
     let mut plain_ms = Vec::new();
+    let mut baseline_ms = Vec::new();
+    let isa = instruction_set();
     for _ in 0..args.repeat.max(1) {
+        if isa != "AVX2" && isa.starts_with("AVX") {
+            // The same landscape on the build's baseline, for CPUs without
+            // the faster path (the numbers are the same bits).
+            set_avx512(false);
+            let t = Instant::now();
+            let land = landscape::compute(without_e.clone(), grid, &cancel, &mut |_, _| {});
+            baseline_ms.push(t.elapsed().as_secs_f64() * 1e3);
+            set_avx512(true);
+            std::hint::black_box(land?);
+        }
         let t = Instant::now();
         let land = landscape::compute(model.clone(), grid, &cancel, &mut |_, _| {})?;
         land_ms.push(t.elapsed().as_secs_f64() * 1e3);
@@ -118,6 +131,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         args.grid,
         pm / 150.0
     );
+    if baseline_ms.is_empty() {
+        println!("kernels: {isa} (the build's baseline)");
+    } else {
+        println!(
+            "kernels: {isa}; without E on the AVX2 baseline (DMPSCOPE_SIMD=baseline): {:.2} ms, {:.2}x slower",
+            median(&baseline_ms),
+            median(&baseline_ms) / pm
+        );
+    }
     let om = median(&op_ms);
     let rm = median(&rollout_ms);
     println!(
