@@ -109,6 +109,8 @@ try {
   figures.longest_frame_interval_at = `frame ${done.longest_frame_at}, after: ${done.longest_frame_after}`;
   figures.longest_frame_cpu_ms_while_computing = done.longest_frame_cpu_ms;
   figures.longest_frame_cpu_at = done.longest_frame_cpu_after;
+  // [interval before the frame, egui CPU of the frame before (logic and painting), the app's own ui time of the frame before], ms.
+  figures.frame_log_while_computing = done.frame_log_computing.map((r) => r.map((v) => Math.round(v * 10) / 10));
   console.log(`optimum ${JSON.stringify(done.optimum)}`);
   // The same numbers as the native build (DMPSCOPE_BIN, else target/{debug,release}).
   const repo = join(here, "..", "..");

@@ -353,6 +353,8 @@ impl eframe::App for DmpApp {
             self.session.update(&self.settings);
             ctx.request_repaint();
         }
+        #[cfg(feature = "testing")]
+        self.frame_watch.ui_done();
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

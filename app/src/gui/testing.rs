@@ -53,6 +53,14 @@ pub struct FrameWatch {
     /// The app's own CPU time of its longest frame while computing (egui's
     /// `cpu_usage`, without the renderer's), and the status then.
     cpu_ms_computing: (f64, String),
+    /// When this frame's `ui` started.
+    ui_start: Option<Instant>,
+    /// Per frame while computing (the first 40): the interval before it,
+    /// egui's CPU of the frame before it (logic and painting) and the
+    /// app's own `ui` time of the frame before it, ms.
+    log: Vec<[f64; 3]>,
+    /// The last frame's own `ui` time, ms.
+    last_ui_ms: f64,
 }
 
 impl FrameWatch {
@@ -60,7 +68,12 @@ impl FrameWatch {
     /// and `status` what the session is doing.
     pub fn frame(&mut self, complete: bool, status: String, cpu_s: Option<f32>) {
         let now = Instant::now();
+        self.ui_start = Some(now);
         let cpu_ms = f64::from(cpu_s.unwrap_or(0.0)) * 1e3;
+        if !complete && self.log.len() < 40 {
+            let gap = self.last.map_or(0.0, |l| now.duration_since(l).as_secs_f64() * 1e3);
+            self.log.push([gap, cpu_ms, self.last_ui_ms]);
+        }
         if !complete && cpu_ms > self.cpu_ms_computing.0 {
             self.cpu_ms_computing = (cpu_ms, self.status.clone());
         }
@@ -76,6 +89,15 @@ impl FrameWatch {
         self.last = Some(now);
         self.frames += 1;
         self.status = status;
+    }
+}
+
+impl FrameWatch {
+    /// Records the end of this frame's `ui`.
+    pub fn ui_done(&mut self) {
+        if let Some(start) = self.ui_start.take() {
+            self.last_ui_ms = start.elapsed().as_secs_f64() * 1e3;
+        }
     }
 }
 
@@ -185,6 +207,7 @@ impl DmpApp {
             "longest_frame_after": self.frame_watch.longest_at.1,
             "longest_frame_cpu_ms": self.frame_watch.cpu_ms_computing.0,
             "longest_frame_cpu_after": self.frame_watch.cpu_ms_computing.1,
+            "frame_log_computing": self.frame_watch.log,
             "longest_slice_ms": page.longest_ms,
             "compute_ms": page.total_ms,
             "messages": messages,

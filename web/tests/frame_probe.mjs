@@ -1,0 +1,74 @@
+// What one frame of the page costs with no worker computing: after the
+// landscape and the optimum, the pointer moves over the central panel for
+// 60 steps (each a repaint); prints the browser's own requestAnimationFrame
+// interval when idle, the app's frames per second while hovering, and the
+// trace slices (Chromium's tracing over CDP) that took the most time, per
+// process. Measured here (docs/browser.md): the page's frames take ~280 ms,
+// the renderer waiting in GLES2::ReadPixels for the GPU process to run the
+// frame's WebGL commands on SwiftShader.
+//
+// Usage: web/build.sh --testing && (cd web/tests && node frame_probe.mjs)
+import { chromium } from "playwright-core";
+import { serve } from "./serve.mjs";
+import { mkdtemp, rm } from "node:fs/promises";
+import { tmpdir } from "node:os";
+import { join, dirname } from "node:path";
+import { fileURLToPath } from "node:url";
+
+const here = dirname(fileURLToPath(import.meta.url));
+const { server, url } = await serve(join(here, "..", "dist"));
+const profile = await mkdtemp(join(tmpdir(), "dmpscope-probe-"));
+const context = await chromium.launchPersistentContext(profile, {
+  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
+  headless: true,
+  viewport: { width: 1280, height: 800 },
+  args: ["--no-sandbox", "--disable-background-networking", "--disable-component-update", "--disable-sync", "--no-first-run"],
+});
+try {
+  const page = context.pages()[0] ?? (await context.newPage());
+  const state = () => page.evaluate(() => (window.dmpscope_state ? JSON.parse(window.dmpscope_state()) : null));
+  await page.goto(url);
+  const start = Date.now();
+  for (;;) {
+    const s = await state();
+    if (s && s.landscape?.total > 0 && s.landscape.done === s.landscape.total && s.optimum) break;
+    if (Date.now() - start > 60000) throw new Error("no landscape after 60 s");
+    await page.waitForTimeout(50);
+  }
+  await page.waitForTimeout(1000);
+  const raf = await page.evaluate(() => new Promise((done) => {
+    const t = [];
+    const tick = (ts) => { t.push(ts); if (t.length < 30) requestAnimationFrame(tick); else done(t); };
+    requestAnimationFrame(tick);
+  }));
+  const gaps = raf.slice(1).map((v, i) => v - raf[i]).sort((a, b) => a - b);
+  console.log(`requestAnimationFrame when the app draws nothing: median ${gaps[gaps.length >> 1].toFixed(1)} ms`);
+  const client = await context.newCDPSession(page);
+  const events = [];
+  client.on("Tracing.dataCollected", (e) => events.push(...e.value));
+  const traced = new Promise((r) => client.once("Tracing.tracingComplete", r));
+  await client.send("Tracing.start", { categories: "gpu,viz,cc,toplevel,benchmark", transferMode: "ReportEvents" });
+  const f0 = (await state()).frames;
+  const t0 = Date.now();
+  for (let i = 0; i < 60; i++) {
+    await page.mouse.move(600 + (i % 20) * 5, 400 + (i % 7) * 3);
+    await page.waitForTimeout(16);
+  }
+  const frames = (await state()).frames - f0;
+  const ms = Date.now() - t0;
+  await client.send("Tracing.end");
+  await traced;
+  console.log(`app frames while the pointer moves: ${frames} in ${ms} ms, ${(ms / Math.max(1, frames)).toFixed(0)} ms per frame`);
+  const total = new Map();
+  for (const e of events) {
+    if (e.ph === "X" && e.dur) total.set(`${e.name} (pid ${e.pid})`, (total.get(`${e.name} (pid ${e.pid})`) ?? 0) + e.dur);
+  }
+  console.log("trace slices with the most time (nested slices count in their parents too):");
+  for (const [name, us] of [...total.entries()].sort((a, b) => b[1] - a[1]).slice(0, 15)) {
+    console.log(`${(us / 1000).toFixed(0).padStart(8)} ms  ${name}`);
+  }
+} finally {
+  await context.close();
+  server.close();
+  await rm(profile, { recursive: true, force: true });
+}
