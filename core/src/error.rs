@@ -98,7 +98,11 @@ pub enum Error {
         field: &'static str,
     },
     /// A demonstration is too short for the Savitzky-Golay window.
-    #[error("{demo}: too few samples after resampling (n0 = {n0}, need at least {min})")]
+    #[error(
+        "{demo}: too few samples after resampling (n0 = {n0}, need at least {min}, the \
+         Savitzky-Golay window): a shorter window (--sg-window, odd and at least the order + 2; \
+         the app's Settings: SG window) or a recording at a higher rate"
+    )]
     TooFewSamples {
         /// The demo's name.
         demo: String,

@@ -142,10 +142,15 @@ pub fn apply(demos: &mut [RawDemo], settings: &SegmentSettings, trim: bool) -> V
             .map(|f| 100.0 * (f.2.lead_s + f.2.trail_s) / f.2.duration_s.max(1e-12))
             .collect(),
     );
+    // One file's name, or how many files (a folder of recordings).
+    let files: std::collections::BTreeSet<&str> = found.iter().map(|f| f.0.as_str()).collect();
+    let whose = match files.first() {
+        Some(one) if files.len() == 1 => (*one).to_owned(),
+        _ => format!("{} files", files.len()),
+    };
     let mut out = vec![Notice::info(format!(
-        "{}: {} demos rest at their ends, {s0:.2}-{s1:.2} s ({p0:.0}-{p1:.0} % of their \
+        "{whose}: {} demos rest at their ends, {s0:.2}-{s1:.2} s ({p0:.0}-{p1:.0} % of their \
          durations): {action} (-v names each)",
-        found[0].0,
         found.len()
     ))];
     out.extend(found.iter().map(|f| Notice::detail(each(f))));
@@ -204,6 +209,21 @@ mod tests {
                 .contains("arm.mcap: 5 demos rest at their ends"),
             "{}",
             many_said[0].text
+        );
+        // Demos from several files: the summary names no one file.
+        let mut spread: Vec<RawDemo> = (0..5)
+            .map(|i| RawDemo {
+                file: format!("trial_{i}.csv"),
+                ..rested()
+            })
+            .collect();
+        let spread_said = apply(&mut spread, &settings, false);
+        assert!(
+            spread_said[0]
+                .text
+                .starts_with("5 files: 5 demos rest at their ends"),
+            "{}",
+            spread_said[0].text
         );
         let said = apply(&mut demos, &settings, true);
         assert!(said[0].text.contains("trimmed"));

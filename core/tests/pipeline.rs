@@ -48,6 +48,8 @@ fn unusable_demos_are_skipped_with_a_warning_or_stop_the_build() {
     );
     let err = build_model(&demos, &prep, Default::default(), Unusable::Fail).expect_err("fail");
     assert!(matches!(err, Error::TooFewSamples { .. }), "{err}");
+    // The error says what to change.
+    assert!(err.to_string().contains("--sg-window"), "{err}");
     let none = build_model(
         &[short("a"), short("b")],
         &prep,

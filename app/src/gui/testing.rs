@@ -71,7 +71,9 @@ impl FrameWatch {
         self.ui_start = Some(now);
         let cpu_ms = f64::from(cpu_s.unwrap_or(0.0)) * 1e3;
         if !complete && self.log.len() < 40 {
-            let gap = self.last.map_or(0.0, |l| now.duration_since(l).as_secs_f64() * 1e3);
+            let gap = self
+                .last
+                .map_or(0.0, |l| now.duration_since(l).as_secs_f64() * 1e3);
             self.log.push([gap, cpu_ms, self.last_ui_ms]);
         }
         if !complete && cpu_ms > self.cpu_ms_computing.0 {
