@@ -500,7 +500,7 @@ impl Model {
             out.v.push(u.map(|u| u / dt).into());
             for ax in 0..3 {
                 let [f0, f1, f2, _] = step[ax];
-                let du = f0 + dm * f1 + kdt2 * (f2 - z[ax]) - ddt * u[ax];
+                let du = f0 + dm * f1 + km * f2 - kdt2 * z[ax] - ddt * u[ax];
                 a[ax] = du / dt2;
                 u[ax] += du;
                 z[ax] += u[ax];

@@ -11,12 +11,10 @@
 
 /// One demo laid out for the integration kernel, in scaled variables
 /// `z = y - g` and `u = v dt`, so that a step is
-/// `u += (F0 + D F1) dt^2 + K dt^2 (F2 - z) - D dt u; z += u` (the spring
-/// and the forcing term's `K` part share their factor: one multiplication
-/// fewer per axis than `K F2 dt^2 - K dt^2 z`).
+/// `u += (F0 + D F1 + K F2) dt^2 - K dt^2 z - D dt u; z += u`.
 #[derive(Clone, Debug)]
 pub(crate) struct DemoKernel {
-    /// Per grid point and axis: `[F0 dt^2, F1 dt^2, F2, y_raw - g]`.
+    /// Per grid point and axis: `[F0 dt^2, F1 dt^2, F2 dt^2, y_raw - g]`.
     pub(crate) steps: Vec<[[f64; 4]; 3]>,
     /// `y_raw(0) - g`.
     pub(crate) z0: [f64; 3],
@@ -26,7 +24,7 @@ pub(crate) struct DemoKernel {
 
 impl DemoKernel {
     /// A kernel from its parts: per grid point and axis
-    /// `[F0 dt^2, F1 dt^2, F2, y_raw - g]`, `z0 = y_raw(0) - g` and
+    /// `[F0 dt^2, F1 dt^2, F2 dt^2, y_raw - g]`, `z0 = y_raw(0) - g` and
     /// `u0 = y'(0) dt`.
     pub(crate) fn from_parts(steps: Vec<[[f64; 4]; 3]>, z0: [f64; 3], u0: [f64; 3]) -> Self {
         Self { steps, z0, u0 }
@@ -47,7 +45,7 @@ impl DemoKernel {
                     [
                         fk[ax][0] * dt2,
                         fk[ax][1] * dt2,
-                        fk[ax][2],
+                        fk[ax][2] * dt2,
                         yr[ax] - g[ax],
                     ]
                 })
@@ -114,8 +112,8 @@ fn integrate_lanes<const L: usize, const PEAK: bool>(
             for l in 0..L {
                 let e = z[ax][l] - target;
                 e2[l] += e * e;
-                // a dt^2 = (F0 + D F1) dt^2 + K dt^2 (F2 - (y - g)) - D dt (v dt)
-                let du = fd + kdt2[l] * (f2 - z[ax][l]) - ddt * u[ax][l];
+                // a dt^2 = f dt^2 - K dt^2 (y - g) - D dt (v dt)
+                let du = fd + km[l] * f2 - kdt2[l] * z[ax][l] - ddt * u[ax][l];
                 if PEAK {
                     du2[l] += du * du;
                 }

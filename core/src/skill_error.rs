@@ -128,9 +128,7 @@ pub(crate) fn kernels(
     for ((proj, q), demo) in projections.iter().zip(&to_skill).zip(demos) {
         for (acc, fk) in parts.iter_mut().zip(&proj.f) {
             for (c, acc_c) in acc.iter_mut().enumerate() {
-                // F0 and F1 times dt^2, F2 as it is (the kernel's layout).
-                let scale = if c == 2 { 1.0 } else { dt2 };
-                let mapped = q.apply(Vec3::from_fn(|ax, _| fk[ax][c] * scale));
+                let mapped = q.apply(Vec3::from_fn(|ax, _| fk[ax][c] * dt2));
                 *acc_c += mapped;
             }
         }
