@@ -237,7 +237,7 @@ impl<const V: usize> Lanes<V> {
             }
         }
         self.steps += 1;
-        self.turn(dt, self.steps % RENORMALISE_EVERY == 0);
+        self.turn(dt, self.steps.is_multiple_of(RENORMALISE_EVERY));
         a
     }
 

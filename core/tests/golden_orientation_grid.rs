@@ -11,12 +11,12 @@
 //! `theta = 2 acos(|q . q_raw|)` is ill-conditioned where the two agree
 //! (a rounding of `|q|` moves `d_rot` by up to 1e-7 relative).
 
+mod common;
 mod golden_data;
 
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use dmpscope_core::io::{LoadOptions, SourceData, load_source};
 use dmpscope_core::landscape::{self, Axis, AxisScale, Grid};
 use dmpscope_core::rotation::{self, Q};
 use dmpscope_core::{Model, PrepSettings, Quantity, Unusable, build_model};
@@ -29,15 +29,8 @@ const REL: f64 = 1e-6;
 const TIGHT: f64 = 1e-9;
 
 fn model() -> Model {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/planted8.mcap");
-    let loaded = load_source(
-        "planted8.mcap",
-        SourceData::Path(&path),
-        &LoadOptions::default(),
-    )
-    .expect("the planted sample");
     let built = build_model(
-        &loaded.demos,
+        &common::planted8_demos(),
         &PrepSettings::default(),
         Default::default(),
         Unusable::Fail,

@@ -5,29 +5,23 @@
 //! single gain pairs. On a CPU without AVX-512 both runs take the baseline
 //! and the test says so.
 
+mod common;
+
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
 use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::io::{LoadOptions, SourceData, load_source};
 use dmpscope_core::kernel_dispatch::{instruction_set, set_avx512};
 use dmpscope_core::landscape::{self, Axis, AxisScale, Grid};
 use dmpscope_core::{Model, PrepSettings, Unusable, build_model};
 
 fn model() -> Model {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/planted8.mcap");
-    let loaded = load_source(
-        "planted8.mcap",
-        SourceData::Path(&path),
-        &LoadOptions::default(),
-    )
-    .expect("the planted sample");
     let settings = DmpSettings {
         orientation_map: true,
         ..DmpSettings::default()
     };
     build_model(
-        &loaded.demos,
+        &common::planted8_demos(),
         &PrepSettings::default(),
         settings,
         Unusable::Fail,

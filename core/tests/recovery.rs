@@ -145,14 +145,7 @@ fn an_axis_sd_floor_keeps_a_noisy_axis_from_dominating_s() {
     // takes 27 % of S and is flagged. Flooring each axis's SD at 0.6 of the
     // demo's largest (an option beyond the method) flags nobody and brings
     // J's optimum nearer the planted gains.
-    let bytes = include_bytes!("../../assets/planted8.mcap");
-    let demos = dmpscope_core::io::load_source(
-        "planted8.mcap",
-        dmpscope_core::io::SourceData::Bytes(bytes),
-        &dmpscope_core::io::LoadOptions::default(),
-    )
-    .expect("planted8")
-    .demos;
+    let demos = common::planted8_demos();
     let (_, x0, d0) = diagnose(&demos);
     let floored = DmpSettings {
         axis_sd_floor: 0.6,

@@ -220,6 +220,19 @@ pub fn sample_demos() -> Vec<RawDemo> {
     .demos
 }
 
+/// The bundled planted sample's demos (`assets/planted8.mcap`: eight
+/// demos with orientations), read as the app and the CLI read it.
+pub fn planted8_demos() -> Vec<RawDemo> {
+    let bytes = include_bytes!("../../../assets/planted8.mcap");
+    dmpscope_core::io::load_source(
+        "planted8.mcap",
+        dmpscope_core::io::SourceData::Bytes(bytes),
+        &dmpscope_core::io::LoadOptions::default(),
+    )
+    .expect("the bundled planted sample loads")
+    .demos
+}
+
 /// Planted demos (`dmpscope_core::planted`) as raw demos named
 /// `planted:i` on topics `/demo_ii`, orientations included.
 pub fn planted_raw(spec: &dmpscope_core::planted::PlantedSpec) -> Vec<RawDemo> {
