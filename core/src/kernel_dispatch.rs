@@ -101,14 +101,16 @@ impl<K: Kernel> pulp::WithSimd for Call<K> {
     }
 }
 
-/// The instruction set the kernels run with now (for `bench` and `info`).
+/// The instruction set the kernels run with now (for `bench`).
 pub fn instruction_set() -> &'static str {
     #[cfg(target_arch = "x86_64")]
     {
         if avx512().is_some() {
             "AVX-512"
-        } else {
+        } else if cfg!(target_feature = "avx2") {
             "AVX2"
+        } else {
+            "SSE2 (a build without x86-64-v3)"
         }
     }
     #[cfg(target_arch = "wasm32")]

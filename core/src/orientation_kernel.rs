@@ -76,8 +76,9 @@ const H: [f64; 15] = [
 /// is `|w| <= 20` rad per unit time at 1001 grid points.
 const EXP_SHORT_MAX: f64 = 1e-4;
 
-/// Steps between two renormalisations of the rotation to go: the exact
-/// `exp` and the product keep `|r|` within a rounding of one per step, so
+/// Steps between two renormalisations of the rotation to go: the `exp`
+/// (truncation below 3e-16) and the product keep `|r|` within a rounding
+/// of one per step, so
 /// `|r| - 1` stays near 1e-15 (the method renormalises only the prepared
 /// `q`; the quaternions stay unit to 1e-12, tested).
 const RENORMALISE_EVERY: usize = 16;

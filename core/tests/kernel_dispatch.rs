@@ -3,7 +3,10 @@
 //! landscape of the planted sample (positions, E, S and the orientation's
 //! `d_rot`) and each demo's `d`, `a_peak`, `e`, `d_rot` and `alpha_peak` at
 //! single gain pairs. On a CPU without AVX-512 both runs take the baseline
-//! and the test says so.
+//! and the test says so, unless `DMPSCOPE_REQUIRE_AVX512=1` (which
+//! `.ci/run` sets where `/proc/cpuinfo` lists x86-64-v4's AVX-512
+//! features): then it fails,
+//! since the dispatch did not find what the CPU has.
 
 mod common;
 
@@ -13,7 +16,7 @@ use std::sync::atomic::AtomicBool;
 use dmpscope_core::dmp::DmpSettings;
 use dmpscope_core::kernel_dispatch::{instruction_set, set_avx512};
 use dmpscope_core::landscape::{self, Axis, AxisScale, Grid};
-use dmpscope_core::{Model, PrepSettings, Unusable, build_model};
+use dmpscope_core::{Model, PrepSettings, Quantity, Unusable, build_model};
 
 fn model() -> Model {
     let settings = DmpSettings {
@@ -42,6 +45,16 @@ fn fingerprint(model: &Arc<Model>) -> Vec<u64> {
     let cancel = AtomicBool::new(false);
     let land =
         landscape::compute(model.clone(), grid, &cancel, &mut |_, _| {}).expect("a landscape");
+    // Every quantity is there to compare: d_rot too, finite at most points.
+    let finite = land
+        .values(Quantity::DRotSum)
+        .iter()
+        .filter(|v| v.is_finite())
+        .count();
+    assert!(
+        finite > 20 * 20 / 2,
+        "d_rot finite at {finite} of 400 points"
+    );
     let mut bits: Vec<u64> = land.values.iter().flatten().map(|v| v.to_bits()).collect();
     for (dm, km) in [(1.0, 3.0), (25.0, 156.25), (40.0, 900.0), (300.0, 2.0)] {
         let p = model.evaluate(dm, km);
@@ -67,6 +80,10 @@ fn avx512_path_gives_the_baseline_bits() {
     let baseline = fingerprint(&model);
     set_avx512(true);
     if best != "AVX-512" {
+        assert!(
+            std::env::var("DMPSCOPE_REQUIRE_AVX512").as_deref() != Ok("1"),
+            "DMPSCOPE_REQUIRE_AVX512=1 but the kernels ran on {best}"
+        );
         eprintln!("skipped: this CPU has no AVX-512, both runs took {best}");
     }
     assert_eq!(fast.len(), baseline.len());

@@ -1,7 +1,7 @@
 // What one frame of the page costs with no worker computing: after the
 // landscape and the optimum, the pointer moves over the central panel for
 // 60 steps (each a repaint); prints the browser's own requestAnimationFrame
-// interval when idle, the app's frames per second while hovering, and the
+// interval when idle, the app's time per frame while hovering, and the
 // trace slices (Chromium's tracing over CDP) that took the most time, per
 // process. Measured here (docs/browser.md): the page's frames take ~280 ms,
 // the renderer waiting in GLES2::ReadPixels for the GPU process to run the
@@ -30,7 +30,11 @@ try {
   await page.goto(url);
   const start = Date.now();
   for (;;) {
-    const s = await state();
+    const hooked = await page.evaluate(() => typeof window.dmpscope_state === "function");
+    if (!hooked && Date.now() - start > 20000) {
+      throw new Error("no window.dmpscope_state after 20 s: build with web/build.sh --testing");
+    }
+    const s = hooked ? await state() : null;
     if (s && s.landscape?.total > 0 && s.landscape.done === s.landscape.total && s.optimum) break;
     if (Date.now() - start > 60000) throw new Error("no landscape after 60 s");
     await page.waitForTimeout(50);

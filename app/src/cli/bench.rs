@@ -67,33 +67,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ..Axis::paper()
     };
     let grid = Grid { dm: axis, km: axis };
-    let cancel = std::sync::atomic::AtomicBool::new(false);
-    // With E and without, alternated so both see the same machine.
-    let without_e = std::sync::Arc::new(model.without_skill_error());
-    let mut land_ms = Vec::new();
-    let mut plain_ms = Vec::new();
-    let mut baseline_ms = Vec::new();
-    let isa = instruction_set();
-    for _ in 0..args.repeat.max(1) {
-        if isa != "AVX2" && isa.starts_with("AVX") {
-            // The same landscape on the build's baseline, for CPUs without
-            // the faster path (the numbers are the same bits).
-            set_avx512(false);
-            let t = Instant::now();
-            let land = landscape::compute(without_e.clone(), grid, &cancel, &mut |_, _| {});
-            baseline_ms.push(t.elapsed().as_secs_f64() * 1e3);
-            set_avx512(true);
-            std::hint::black_box(land?);
-        }
-        let t = Instant::now();
-        let land = landscape::compute(model.clone(), grid, &cancel, &mut |_, _| {})?;
-        land_ms.push(t.elapsed().as_secs_f64() * 1e3);
-        std::hint::black_box(land);
-        let t = Instant::now();
-        let land = landscape::compute(without_e.clone(), grid, &cancel, &mut |_, _| {})?;
-        plain_ms.push(t.elapsed().as_secs_f64() * 1e3);
-        std::hint::black_box(land);
-    }
+    let [land_ms, plain_ms, baseline_ms] = landscape_times(&model, grid, args.repeat.max(1))?;
     // Operating points along a path across the default box, as a drag would visit.
     let mut op_ms = Vec::new();
     let mut rollout_ms = Vec::new();
@@ -131,6 +105,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         args.grid,
         pm / 150.0
     );
+    let isa = instruction_set();
     if baseline_ms.is_empty() {
         println!("kernels: {isa} (the build's baseline)");
     } else {
@@ -158,6 +133,39 @@ pub fn run(args: Args) -> anyhow::Result<()> {
          --vs-numpy"
     );
     Ok(())
+}
+
+/// The landscape's wall times in ms: with E, without E, and without E on
+/// the AVX2 baseline where the kernels run on AVX-512 (else empty);
+/// alternated so that all see the same machine.
+fn landscape_times(
+    model: &std::sync::Arc<dmpscope_core::Model>,
+    grid: Grid,
+    repeat: usize,
+) -> anyhow::Result<[Vec<f64>; 3]> {
+    let cancel = std::sync::atomic::AtomicBool::new(false);
+    let without_e = std::sync::Arc::new(model.without_skill_error());
+    let (mut land_ms, mut plain_ms, mut baseline_ms) = (Vec::new(), Vec::new(), Vec::new());
+    let faster = instruction_set() == "AVX-512";
+    let time = |m: &std::sync::Arc<dmpscope_core::Model>, into: &mut Vec<f64>| {
+        let t = Instant::now();
+        let land = landscape::compute(m.clone(), grid, &cancel, &mut |_, _| {});
+        into.push(t.elapsed().as_secs_f64() * 1e3);
+        land.map(std::hint::black_box).map(|_| ())
+    };
+    for _ in 0..repeat {
+        if faster {
+            // The same landscape on the build's baseline, for CPUs without
+            // AVX-512 (the numbers are the same bits).
+            set_avx512(false);
+            let r = time(&without_e, &mut baseline_ms);
+            set_avx512(true);
+            r?;
+        }
+        time(model, &mut land_ms)?;
+        time(&without_e, &mut plain_ms)?;
+    }
+    Ok([land_ms, plain_ms, baseline_ms])
 }
 
 /// The landscape with the orientation error `d_rot` (method.md section 12)

@@ -275,7 +275,8 @@ impl eframe::App for DmpApp {
         }
         #[cfg(feature = "testing")]
         self.frame_watch.frame(
-            self.session.landscape_complete(),
+            !self.session.landscape_complete()
+                && self.session.shown().is_some_and(|s| s.snapshot.total > 0),
             self.session.status().describe(),
             frame.info().cpu_usage,
         );

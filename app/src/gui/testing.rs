@@ -64,13 +64,14 @@ pub struct FrameWatch {
 }
 
 impl FrameWatch {
-    /// Records a frame; `complete` says whether the landscape is complete
-    /// and `status` what the session is doing.
-    pub fn frame(&mut self, complete: bool, status: String, cpu_s: Option<f32>) {
+    /// Records a frame; `computing` says whether the landscape has started
+    /// and is not complete, `status` what the session is doing.
+    pub fn frame(&mut self, computing: bool, status: String, cpu_s: Option<f32>) {
+        let complete = !computing;
         let now = Instant::now();
         self.ui_start = Some(now);
         let cpu_ms = f64::from(cpu_s.unwrap_or(0.0)) * 1e3;
-        if !complete && self.log.len() < 40 {
+        if computing && self.log.len() < 40 {
             let gap = self
                 .last
                 .map_or(0.0, |l| now.duration_since(l).as_secs_f64() * 1e3);
@@ -95,6 +96,13 @@ impl FrameWatch {
 }
 
 impl FrameWatch {
+    /// Leaves `spent` (the tests' own hook) out of this frame's `ui` time.
+    pub fn exclude(&mut self, spent: std::time::Duration) {
+        if let Some(start) = &mut self.ui_start {
+            *start += spent;
+        }
+    }
+
     /// Records the end of this frame's `ui`.
     pub fn ui_done(&mut self) {
         if let Some(start) = self.ui_start.take() {
@@ -115,6 +123,8 @@ impl DmpApp {
         let Some(hooks) = self.hooks.clone() else {
             return;
         };
+        // The hook's own time is not the app's.
+        let spent = Instant::now();
         let (train, grid) = {
             let mut h = hooks.borrow_mut();
             (std::mem::take(&mut h.train), std::mem::take(&mut h.grid))
@@ -128,6 +138,7 @@ impl DmpApp {
         }
         let state = self.test_state(ctx).to_string();
         hooks.borrow_mut().state = state;
+        self.frame_watch.exclude(spent.elapsed());
     }
 
     /// Starts training as the RL panel's Train button with the extracted

@@ -1,6 +1,6 @@
 //! Helpers shared by the test binaries that build, corrupt and load MCAP
-//! files (`bad_input`, `alloc_limits`) or read the bundled sample
-//! (`report`, `recovery`). Each binary includes this module with
+//! files (`bad_input`, `alloc_limits`) or read the bundled samples
+//! (`report`, `recovery`, `golden_orientation_grid`, `kernel_dispatch`). Each binary includes this module with
 //! `mod common;`; not every binary uses every helper.
 
 #![allow(dead_code)]
