@@ -2,7 +2,8 @@
 //! loads, the landscape fills, a preset button moves the operating point, a
 //! drag on the J map moves it again, changing k changes J and the optimum
 //! without recomputing the landscape, a rosbag2 folder opens, a folder with
-//! nothing usable says so, the Recording panel lists skipped streams and a
+//! nothing usable says so, a folder of recordings counts its files, the
+//! Recording panel lists skipped streams and a
 //! tick there recomputes the landscape. Jobs run inline (`Runner::inline`), so every
 //! frame finishes the work it starts and no test sleeps; one test runs the
 //! real background threads.
@@ -311,6 +312,25 @@ fn a_folder_with_no_usable_demo_says_so_instead_of_a_spinner() {
     assert_eq!(h.state().session().status(), Status::NoDemos);
     let _said = h.get_by_label_contains("No demonstration was found");
     let _why = h.get_by_label_contains("holds no .mcap file");
+}
+
+#[test]
+fn a_folder_of_recordings_counts_its_files() {
+    // Two CSV recordings in one folder: one source, two files, two demos.
+    let folder = support::tmp_path("gui-two-csvs");
+    std::fs::create_dir_all(&folder).expect("folder");
+    for (i, reach) in [0.3, 0.25].into_iter().enumerate() {
+        let mut csv = String::from("t,x,y,z\n");
+        for k in 0..200 {
+            let s = f64::from(k) / 199.0;
+            let x = reach * s * s * (3.0 - 2.0 * s);
+            csv.push_str(&format!("{},{x},{},0.9\n", f64::from(k) * 0.01, 0.1 * x));
+        }
+        std::fs::write(folder.join(format!("trial_{i}.csv")), csv).expect("csv");
+    }
+    let h = harness_on(vec![Source::Path(folder)], Runner::inline());
+    assert_eq!(h.state().session().demos().len(), 2);
+    let _count = h.get_by_label("2 file(s), 2 demos");
 }
 
 #[test]

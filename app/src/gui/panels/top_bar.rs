@@ -40,11 +40,15 @@ pub fn top_bar_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             }
         });
         ui.menu_button("Export", |ui| export_menu(ui, cx));
-        ui.label(format!(
-            "{} file(s), {} demos",
-            session.sources().count(),
-            session.demos().len()
-        ));
+        // Files, not sources: a folder counts each recording in it.
+        let files = session
+            .demos()
+            .iter()
+            .map(|d| d.raw.file.as_str())
+            .collect::<std::collections::BTreeSet<_>>()
+            .len()
+            .max(session.sources().count());
+        ui.label(format!("{files} file(s), {} demos", session.demos().len()));
         if session.loading() {
             ui.spinner();
             ui.label("loading…");
