@@ -444,12 +444,7 @@ fn the_new_target_tab_runs_a_demo_or_the_skill_and_exports_it_for_a_robot() {
     // A goal moved towards the start: the per-axis factors shrink and the
     // run still ends at the new goal.
     let (start, goal) = {
-        let g = h
-            .state()
-            .session()
-            .generalised()
-            .expect("on")
-            .expect("runs");
+        let g = support::run_at_new_target(&h);
         (g.out.start, g.out.goal)
     };
     let closer: [f64; 3] = std::array::from_fn(|a| start[a] + 0.5 * (goal[a] - start[a]));

@@ -94,12 +94,7 @@ fn a_goal_orientation_typed_in_new_target_is_reached() {
         &ctx,
     );
     h.run_steps(2);
-    let g = h
-        .state()
-        .session()
-        .generalised()
-        .expect("on")
-        .expect("runs");
+    let g = support::run_at_new_target(&h);
     let path = g.out.orientation.as_ref().expect("an orientation path");
     let end = rotation::angle(*path.q.last().expect("end"), goal).to_degrees();
     assert!(end < 0.1, "ends {end} degrees from the new goal");

@@ -7,6 +7,8 @@
 //! `mesa-vulkan-drivers`), and elsewhere print one notice and pass, so the
 //! README's test command passes on a machine with only the Rust toolchain.
 
+mod support;
+
 use std::sync::{Arc, Once};
 
 use dmpscope::gui::DmpApp;
@@ -213,12 +215,7 @@ fn the_goal_and_start_of_a_new_target_drag_in_the_3d_view() {
     h.get_by_label("Run the DMP at a new target").click();
     h.run_steps(4);
     let own = {
-        let g = h
-            .state()
-            .session()
-            .generalised()
-            .expect("on")
-            .expect("runs");
+        let g = support::run_at_new_target(&h);
         assert_eq!(g.out.warnings, Vec::<String>::new());
         (g.out.start, g.out.goal)
     };
@@ -245,12 +242,7 @@ fn the_goal_and_start_of_a_new_target_drag_in_the_3d_view() {
         own.1
     );
     assert!((moved[2] - own.1[2]).abs() < 1e-5, "at the same height");
-    let g = h
-        .state()
-        .session()
-        .generalised()
-        .expect("on")
-        .expect("runs");
+    let g = support::run_at_new_target(&h);
     assert_eq!(g.out.goal, moved);
     assert!(
         g.out.final_error < 0.05,
@@ -295,12 +287,7 @@ fn the_goal_and_start_of_a_new_target_drag_in_the_3d_view() {
         .target
         .goal_orientation
         .expect("the drag turned the goal");
-    let g = h
-        .state()
-        .session()
-        .generalised()
-        .expect("on")
-        .expect("runs");
+    let g = support::run_at_new_target(&h);
     let own_goal = h.state().session().model().expect("model").demos()[0]
         .orientation
         .as_ref()

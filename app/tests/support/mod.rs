@@ -187,3 +187,14 @@ pub fn tf_bag_bytes() -> Vec<u8> {
     w.finish().expect("finish");
     w.into_inner().into_inner()
 }
+
+/// The run at a new target the app shows; panics when it is off or failed.
+pub fn run_at_new_target<'a>(
+    h: &'a egui_kittest::Harness<'_, dmpscope::gui::DmpApp>,
+) -> &'a dmpscope::session::GenView {
+    h.state()
+        .session()
+        .generalised()
+        .expect("the run at a new target is on")
+        .expect("the run at a new target runs")
+}
