@@ -492,3 +492,52 @@ fn the_new_target_tab_runs_a_demo_or_the_skill_and_exports_it_for_a_robot() {
     h.run_steps(2);
     assert!(h.state().session().generalised().is_none());
 }
+
+/// The area egui's meshes cover in the last frame, in windows (each pixel
+/// once per triangle over it).
+fn painted_windows(h: &Harness<'_, DmpApp>) -> f64 {
+    let out = h.output();
+    let window = f64::from(h.ctx.content_rect().area());
+    let primitives = h.ctx.tessellate(out.shapes.clone(), out.pixels_per_point);
+    let mut area = 0.0;
+    for p in &primitives {
+        if let egui::epaint::Primitive::Mesh(m) = &p.primitive {
+            for t in m.indices.chunks_exact(3) {
+                let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.vertices[i as usize].pos);
+                area += f64::from(((b - a).x * (c - a).y - (b - a).y * (c - a).x).abs()) * 0.5;
+            }
+        }
+    }
+    area / window
+}
+
+/// Under software rasterisers (SwiftShader in a browser without a GPU,
+/// lavapipe) every pixel egui fills costs its shader in full, so the app
+/// run by eframe leaves the panels' background to the renderer's clear:
+/// its meshes then cover less than the window once, against twice when
+/// every panel fills its own rect (as a harness, whose renderer clears to
+/// transparent, still draws it).
+#[test]
+fn the_clear_paints_the_background_and_the_panels_fill_less_than_the_window() {
+    let settings = Settings::with_grid_points(16);
+    let source = Source::Path(support::sample_path());
+    let mut filled = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .build_eframe(move |_cc| DmpApp::with_runner(settings, vec![source], Runner::inline()));
+    filled.run_steps(3);
+    let settings = Settings::with_grid_points(16);
+    let source = Source::Path(support::sample_path());
+    let mut cleared = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .build_eframe(move |_cc| {
+            DmpApp::with_runner(settings, vec![source], Runner::inline())
+                .with_background_from_clear()
+        });
+    cleared.run_steps(3);
+    let (filled, cleared) = (painted_windows(&filled), painted_windows(&cleared));
+    assert!(cleared < 1.0, "{cleared:.2} windows painted");
+    assert!(
+        filled - cleared > 0.9,
+        "the panels' fills: {filled:.2} windows against {cleared:.2}"
+    );
+}

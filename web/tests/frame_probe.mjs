@@ -1,11 +1,15 @@
 // What one frame of the page costs with no worker computing: after the
-// landscape and the optimum, the pointer moves over the central panel for
-// 60 steps (each a repaint); prints the browser's own requestAnimationFrame
-// interval when idle, the app's time per frame while hovering, and the
+// landscape, the optimum and the diagnostics, it prints the browser's own
+// requestAnimationFrame interval when idle, the time per frame with each
+// part of the window left out in turn (frames back to back), the app's
+// time per frame while the pointer moves over the central panel, and the
 // trace slices (Chromium's tracing over CDP) that took the most time, per
-// process. Measured here (docs/browser.md): the page's frames take ~280 ms,
-// the renderer waiting in GLES2::ReadPixels for the GPU process to run the
-// frame's WebGL commands on SwiftShader.
+// process. Measured here (docs/browser.md): a frame takes ~125 ms, the
+// renderer waiting in GLES2::ReadPixels for the GPU process to run the
+// frame's WebGL commands on SwiftShader, where every pixel egui fills runs
+// its whole shader (both sides of its texture-filtering branch).
+// TRACE_CATS sets the trace's categories, TRACE_DUMP=file writes the
+// trace's events there (and skips the parts).
 //
 // Usage: web/build.sh --testing && (cd web/tests && node frame_probe.mjs)
 import { chromium } from "playwright-core";
@@ -35,7 +39,7 @@ try {
       throw new Error("no window.dmpscope_state after 20 s: build with web/build.sh --testing");
     }
     const s = hooked ? await state() : null;
-    if (s && s.landscape?.total > 0 && s.landscape.done === s.landscape.total && s.optimum) break;
+    if (s && s.landscape?.total > 0 && s.landscape.done === s.landscape.total && s.optimum && s.diagnostics && s.diagnostics.done === s.diagnostics.total) break;
     if (Date.now() - start > 60000) throw new Error("no landscape after 60 s");
     await page.waitForTimeout(50);
   }
@@ -47,11 +51,36 @@ try {
   }));
   const gaps = raf.slice(1).map((v, i) => v - raf[i]).sort((a, b) => a - b);
   console.log(`requestAnimationFrame when the app draws nothing: median ${gaps[gaps.length >> 1].toFixed(1)} ms`);
+  // What each part of the frame costs: frames drawn back to back (the
+  // app asks for the next at once) over five seconds with that part left
+  // out (window.dmpscope_hide's bits: app/src/gui/app.rs, mod part).
+  const CONTINUOUS = 1 << 7;
+  const perFrame = async () => {
+    const f0 = (await state()).frames;
+    const t0 = Date.now();
+    await page.waitForTimeout(5000);
+    return (Date.now() - t0) / Math.max(1, (await state()).frames - f0);
+  };
+  const panels = ["the top bar", "the side panel", "the plots panel", "the table panel", "the central panel"];
+  const parts = [
+    ["nothing", 0],
+    ...panels.map((p, i) => [p, 1 << i]),
+    ["the 3D view's drawing", (1 << 8) | (1 << 6)],
+    ["nothing (3D view back)", 1 << 8],
+    ["every panel's content", 31],
+    ["every panel (a label only)", 1 << 5],
+  ];
+  for (const [name, mask] of process.env.TRACE_DUMP ? [] : parts) {
+    await page.evaluate((m) => window.dmpscope_hide(m), mask | CONTINUOUS);
+    await page.waitForTimeout(300);
+    console.log(`ms per frame without ${name}: ${(await perFrame()).toFixed(0)}`);
+  }
+  await page.evaluate(() => window.dmpscope_hide(0));
   const client = await context.newCDPSession(page);
   const events = [];
   client.on("Tracing.dataCollected", (e) => events.push(...e.value));
   const traced = new Promise((r) => client.once("Tracing.tracingComplete", r));
-  await client.send("Tracing.start", { categories: "gpu,viz,cc,toplevel,benchmark", transferMode: "ReportEvents" });
+  await client.send("Tracing.start", { categories: process.env.TRACE_CATS ?? "gpu,viz,cc,toplevel,benchmark", transferMode: "ReportEvents" });
   const f0 = (await state()).frames;
   const t0 = Date.now();
   for (let i = 0; i < 60; i++) {
@@ -67,6 +96,7 @@ try {
   for (const e of events) {
     if (e.ph === "X" && e.dur) total.set(`${e.name} (pid ${e.pid})`, (total.get(`${e.name} (pid ${e.pid})`) ?? 0) + e.dur);
   }
+  if (process.env.TRACE_DUMP) { (await import("node:fs")).writeFileSync(process.env.TRACE_DUMP, JSON.stringify(events)); }
   console.log("trace slices with the most time (nested slices count in their parents too):");
   for (const [name, us] of [...total.entries()].sort((a, b) => b[1] - a[1]).slice(0, 15)) {
     console.log(`${(us / 1000).toFixed(0).padStart(8)} ms  ${name}`);

@@ -30,6 +30,10 @@ pub struct DmpApp {
     pub view: ViewState,
     dialogs: Dialogs,
     frame_log: Option<FrameLog>,
+    /// Whether the renderer's clear paints the panels' background (the
+    /// eframe runs, native and web) instead of each panel filling its rect
+    /// (test harnesses, whose renderer clears to transparent).
+    clear_paints_background: bool,
     #[cfg(feature = "testing")]
     pub(super) frame_watch: super::testing::FrameWatch,
     /// The browser tests' requests and the state they read.
@@ -50,7 +54,8 @@ impl DmpApp {
         let last = files.last().cloned();
         let sources = files.into_iter().map(Source::Path).collect();
         let mut app = Self::with_runner(settings, sources, runner)
-            .with_render_state(cc.wgpu_render_state.as_ref());
+            .with_render_state(cc.wgpu_render_state.as_ref())
+            .with_background_from_clear();
         app.dialogs.remember(last);
         app
     }
@@ -72,6 +77,7 @@ impl DmpApp {
             view: ViewState::new(None),
             dialogs: Dialogs::default(),
             frame_log: FrameLog::from_env(),
+            clear_paints_background: false,
             #[cfg(feature = "testing")]
             frame_watch: Default::default(),
             #[cfg(feature = "testing")]
@@ -83,6 +89,18 @@ impl DmpApp {
     /// the view says it needs one).
     pub fn with_render_state(mut self, render_state: Option<&egui_wgpu::RenderState>) -> Self {
         self.view.view3d = super::view3d::View3d::new(render_state);
+        self
+    }
+
+    /// Leaves the panels' background to the renderer's clear
+    /// ([`eframe::App::clear_color`] is the panels' fill), as [`Self::new`]
+    /// does: the panels then draw no fill of their own. Under software
+    /// rasterisers (SwiftShader in a browser without a GPU, lavapipe) each
+    /// pixel egui fills costs as much as a texture lookup with both of its
+    /// shader's branches, so the window-sized fill was a quarter of a
+    /// frame there (docs/browser.md).
+    pub fn with_background_from_clear(mut self) -> Self {
+        self.clear_paints_background = true;
         self
     }
 
@@ -256,6 +274,134 @@ fn no_system_dialog() -> Notice {
     )
 }
 
+impl DmpApp {
+    /// The five panels; returns the commands they pushed. `left_out`:
+    /// the [`part`]s not drawn (the browser probe's; none otherwise).
+    fn panels_ui(&mut self, ui: &mut egui::Ui, left_out: u32) -> Vec<Command> {
+        let shown = |bit: u32| left_out & (1 << bit) == 0;
+        let (side_frame, central_frame) = self.panel_frames(ui.style());
+        // One context for every panel: they change the settings and the
+        // views' state in place and push what else they ask for.
+        let mut cx = panels::PanelCtx {
+            session: &self.session,
+            settings: &mut self.settings,
+            view: &mut self.view,
+            out: Vec::new(),
+        };
+        egui::Panel::top("top").frame(side_frame).show(ui, |ui| {
+            if shown(part::TOP_BAR) {
+                panels::top_bar_ui(ui, &mut cx);
+            }
+        });
+        egui::Panel::left("side")
+            .frame(side_frame)
+            .default_size(330.0)
+            .min_size(280.0)
+            .show(ui, |ui| {
+                ui.set_min_size(ui.available_size());
+                if shown(part::SIDE) {
+                    egui::ScrollArea::vertical().show(ui, |ui| {
+                        panels::side_ui(ui, &mut cx);
+                    });
+                }
+            });
+        // Panels claim their whole size, so the layout does not depend on
+        // what the first frames had to show (files load off the frame).
+        egui::Panel::right("plots")
+            .frame(side_frame)
+            .default_size(380.0)
+            .min_size(340.0)
+            .show(ui, |ui| {
+                ui.set_min_size(ui.available_size());
+                if shown(part::PLOTS) {
+                    panels::plots_ui(ui, &mut cx);
+                }
+            });
+        egui::Panel::bottom("table")
+            .frame(side_frame)
+            .default_size(200.0)
+            .min_size(150.0)
+            .show(ui, |ui| {
+                ui.set_min_size(ui.available_size());
+                if shown(part::TABLE) {
+                    panels::table_ui(ui, &mut cx);
+                }
+            });
+        egui::CentralPanel::default()
+            .frame(central_frame)
+            .show(ui, |ui| {
+                if shown(part::CENTRAL) {
+                    panels::central_ui(ui, &mut cx);
+                }
+            });
+        cx.out
+    }
+
+    /// The parts of the frame the browser probe asked to leave out
+    /// (`window.dmpscope_hide`), after applying its other requests: frames
+    /// back to back, the 3D view's drawing off.
+    #[cfg(feature = "testing")]
+    fn left_out(&mut self, ctx: &egui::Context) -> u32 {
+        let mask = self.hooks.as_ref().map_or(0, |h| h.borrow().hide);
+        if mask & (1 << part::CONTINUOUS) != 0 {
+            ctx.request_repaint();
+        }
+        if mask & (1 << part::VIEW3D_SET) != 0 {
+            self.view
+                .view3d
+                .set_drawing(mask & (1 << part::VIEW3D) == 0);
+        }
+        mask
+    }
+
+    /// Nothing is left out outside the browser tests' build.
+    #[cfg(not(feature = "testing"))]
+    fn left_out(&mut self, _ctx: &egui::Context) -> u32 {
+        0
+    }
+
+    /// The side and central panels' frames: egui's, without their fill
+    /// when the clear paints the background.
+    fn panel_frames(&self, style: &egui::Style) -> (egui::Frame, egui::Frame) {
+        let side = egui::Frame::side_top_panel(style);
+        let central = egui::Frame::central_panel(style);
+        if self.clear_paints_background {
+            (
+                side.fill(egui::Color32::TRANSPARENT),
+                central.fill(egui::Color32::TRANSPARENT),
+            )
+        } else {
+            (side, central)
+        }
+    }
+}
+
+/// The bits of the browser probe's mask (`web/tests/frame_probe.mjs`): the
+/// parts of the frame it leaves out to measure what each costs.
+pub(super) mod part {
+    /// The top bar.
+    pub const TOP_BAR: u32 = 0;
+    /// The side panel.
+    pub const SIDE: u32 = 1;
+    /// The plots panel.
+    pub const PLOTS: u32 = 2;
+    /// The table panel.
+    pub const TABLE: u32 = 3;
+    /// The central panel.
+    pub const CENTRAL: u32 = 4;
+    /// Every panel (a label only).
+    pub const EVERYTHING: u32 = 5;
+    /// The 3D view's drawing (with [`VIEW3D_SET`]).
+    #[cfg_attr(not(feature = "testing"), allow(dead_code))]
+    pub const VIEW3D: u32 = 6;
+    /// Not a part: frames back to back.
+    #[cfg_attr(not(feature = "testing"), allow(dead_code))]
+    pub const CONTINUOUS: u32 = 7;
+    /// Not a part: set the 3D view's drawing from [`VIEW3D`].
+    #[cfg_attr(not(feature = "testing"), allow(dead_code))]
+    pub const VIEW3D_SET: u32 = 8;
+}
+
 impl eframe::App for DmpApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
@@ -301,47 +447,13 @@ impl eframe::App for DmpApp {
         #[cfg(feature = "testing")]
         self.serve_test_hooks(&ctx);
 
+        let left_out = self.left_out(&ctx);
+        if left_out & (1 << part::EVERYTHING) != 0 {
+            ui.label(format!("frame {}", ctx.cumulative_frame_nr()));
+            return;
+        }
         let before = self.settings.clone();
-        // One context for every panel: they change the settings and the
-        // views' state in place and push what else they ask for.
-        let mut cx = panels::PanelCtx {
-            session: &self.session,
-            settings: &mut self.settings,
-            view: &mut self.view,
-            out: Vec::new(),
-        };
-        egui::Panel::top("top").show(ui, |ui| {
-            panels::top_bar_ui(ui, &mut cx);
-        });
-        egui::Panel::left("side")
-            .default_size(330.0)
-            .min_size(280.0)
-            .show(ui, |ui| {
-                ui.set_min_size(ui.available_size());
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    panels::side_ui(ui, &mut cx);
-                });
-            });
-        // Panels claim their whole size, so the layout does not depend on
-        // what the first frames had to show (files load off the frame).
-        egui::Panel::right("plots")
-            .default_size(380.0)
-            .min_size(340.0)
-            .show(ui, |ui| {
-                ui.set_min_size(ui.available_size());
-                panels::plots_ui(ui, &mut cx);
-            });
-        egui::Panel::bottom("table")
-            .default_size(200.0)
-            .min_size(150.0)
-            .show(ui, |ui| {
-                ui.set_min_size(ui.available_size());
-                panels::table_ui(ui, &mut cx);
-            });
-        egui::CentralPanel::default().show(ui, |ui| {
-            panels::central_ui(ui, &mut cx);
-        });
-        let commands = cx.out;
+        let commands = self.panels_ui(ui, left_out);
         let hover_moved = self.view.end_hover();
         let changed = !commands.is_empty() || self.settings != before;
         if hover_moved {
@@ -360,5 +472,11 @@ impl eframe::App for DmpApp {
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         eframe::set_value(storage, SETTINGS_KEY, &self.settings);
+    }
+
+    /// The panels' fill: with [`DmpApp::with_background_from_clear`] the
+    /// clear is the panels' background.
+    fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
+        visuals.panel_fill.to_normalized_gamma_f32()
     }
 }

@@ -22,6 +22,9 @@ pub struct TestHooks {
     pub grid: Vec<usize>,
     /// The app's state as JSON, written every frame.
     pub state: String,
+    /// Panels not drawn, for `web/tests/frame_probe.mjs`'s cost per panel:
+    /// bit 0 top bar, 1 side, 2 plots, 3 table, 4 central.
+    pub hide: u32,
 }
 
 impl Default for TestHooks {
@@ -31,6 +34,7 @@ impl Default for TestHooks {
             train: Vec::new(),
             grid: Vec::new(),
             state: "{}".to_owned(),
+            hide: 0,
         }
     }
 }

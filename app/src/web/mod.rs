@@ -57,11 +57,17 @@ fn install_hooks(hooks: &crate::gui::SharedHooks) {
         wake_app();
     });
     let h = hooks.clone();
+    let hide = Closure::<dyn Fn(f64)>::new(move |mask: f64| {
+        h.borrow_mut().hide = mask as u32;
+        wake_app();
+    });
+    let h = hooks.clone();
     let grid = Closure::<dyn Fn(f64)>::new(move |n: f64| {
         h.borrow_mut().grid.push(n as usize);
         wake_app();
     });
     if let Some(window) = web_sys::window() {
+        let _ = js_sys::Reflect::set(&window, &"dmpscope_hide".into(), &hide.into_js_value());
         let _ = js_sys::Reflect::set(&window, &"dmpscope_grid".into(), &grid.into_js_value());
         let _ = js_sys::Reflect::set(&window, &"dmpscope_state".into(), &state.into_js_value());
         let _ = js_sys::Reflect::set(&window, &"dmpscope_train".into(), &train.into_js_value());

@@ -75,6 +75,9 @@ pub fn demo_colour(i: usize) -> [u8; 3] {
 pub struct View3d {
     /// Whether the wgpu pipeline is installed.
     gpu: bool,
+    /// The browser probe turned the drawing off (`testing` builds).
+    #[cfg(feature = "testing")]
+    probe_off: bool,
     /// The camera; `None` until fitted to a scene.
     camera: Option<OrbitCamera>,
     /// The scene frame the camera was fitted to.
@@ -93,6 +96,13 @@ pub struct View3d {
 }
 
 impl View3d {
+    /// Turns the drawing off or on again for the browser probe, which
+    /// measures what the view costs a frame.
+    #[cfg(feature = "testing")]
+    pub fn set_drawing(&mut self, on: bool) {
+        self.probe_off = !on;
+    }
+
     /// A view drawing with the pipeline in `render_state`, if any.
     pub fn new(render_state: Option<&egui_wgpu::RenderState>) -> Self {
         if let Some(rs) = render_state {
@@ -107,6 +117,8 @@ impl View3d {
             show_triads: true,
             dragging: None,
             handles_on_screen: None,
+            #[cfg(feature = "testing")]
+            probe_off: false,
         }
     }
 
@@ -179,6 +191,10 @@ impl View3d {
         let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
         let painter = ui.painter_at(rect);
         painter.rect_filled(rect, 4.0, Color32::from_rgb(22, 24, 30));
+        #[cfg(feature = "testing")]
+        if self.probe_off {
+            return None;
+        }
         if !self.gpu {
             painter.text(
                 rect.center(),
