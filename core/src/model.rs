@@ -13,6 +13,7 @@ use serde::Serialize;
 use crate::dmp::{Basis, DmpSettings, Projections};
 use crate::error::{Error, Result};
 use crate::geom::Vec3;
+use crate::orientation::OrientationRollout;
 use crate::orientation_kernel::{self, RotKernel};
 use crate::position_kernel::{DemoKernel, integrate};
 use crate::prepare::PreparedDemo;
@@ -248,12 +249,7 @@ impl Model {
     /// Demo `i`'s orientation regenerated at the position gains `(dm, km)`
     /// (the orientation's own where set) from its own start to its own
     /// goal (method.md section 12); `None` without orientation.
-    pub fn orientation_rollout(
-        &self,
-        i: usize,
-        dm: f64,
-        km: f64,
-    ) -> Option<crate::orientation::OrientationRollout> {
+    pub fn orientation_rollout(&self, i: usize, dm: f64, km: f64) -> Option<OrientationRollout> {
         let prepared = self.demos.get(i)?.orientation.as_ref()?;
         let proj = self.orientation_projections(i)?;
         let target = crate::orientation::OrientationTarget {
@@ -316,6 +312,51 @@ impl Model {
 
     /// `d`, `a_peak` and `e` of every demo and `S` at one gain pair.
     pub fn evaluate(&self, dm: f64, km: f64) -> PointEval {
+        let rot = (0..self.demos.len())
+            .map(|i| {
+                self.rotation_error(i, dm, km)
+                    .unwrap_or((f64::NAN, f64::NAN))
+            })
+            .collect();
+        self.evaluate_with_rot(dm, km, rot)
+    }
+
+    /// [`Model::evaluate`] and every demo's [`Model::orientation_rollout`]
+    /// at `(dm, km)`, each demo's orientation integrated once for both (the
+    /// operating point, every frame a gain is dragged): the same numbers as
+    /// the two apart, to the bit.
+    pub fn evaluate_with_turns(
+        &self,
+        dm: f64,
+        km: f64,
+    ) -> (PointEval, Vec<Option<OrientationRollout>>) {
+        let mut rot = Vec::with_capacity(self.demos.len());
+        let mut turns = Vec::with_capacity(self.demos.len());
+        for (i, demo) in self.demos.iter().enumerate() {
+            let kernel = self.rot_kernels.get(i).and_then(Option::as_ref);
+            // With separate orientation gains d_rot is fixed and the path
+            // runs at those gains: two integrations, as before.
+            match (kernel, &demo.orientation, &self.rot_fixed) {
+                (Some(kernel), Some(o), None) => {
+                    let (error, path) =
+                        orientation_kernel::integrate_keeping_path(kernel, dm, km, o.q[0], o.goal);
+                    rot.push(error);
+                    turns.push(Some(path));
+                }
+                _ => {
+                    rot.push(
+                        self.rotation_error(i, dm, km)
+                            .unwrap_or((f64::NAN, f64::NAN)),
+                    );
+                    turns.push(self.orientation_rollout(i, dm, km));
+                }
+            }
+        }
+        (self.evaluate_with_rot(dm, km, rot), turns)
+    }
+
+    /// [`Model::evaluate`] given each demo's `(d_rot, alpha_peak)`.
+    fn evaluate_with_rot(&self, dm: f64, km: f64, rot: Vec<(f64, f64)>) -> PointEval {
         let mut d = Vec::with_capacity(self.demos.len());
         let mut a_peak = Vec::with_capacity(self.demos.len());
         for kernel in &self.kernels {
@@ -331,12 +372,6 @@ impl Model {
             Err(_) => vec![f64::NAN; self.demos.len()],
         };
         let d_sum = d.iter().sum();
-        let rot: Vec<(f64, f64)> = (0..self.demos.len())
-            .map(|i| {
-                self.rotation_error(i, dm, km)
-                    .unwrap_or((f64::NAN, f64::NAN))
-            })
-            .collect();
         let d_rot: Vec<f64> = rot.iter().map(|r| r.0).collect();
         // Over the demos with orientation, in order, as the lanes sum.
         let d_rot_sum = degrees_sum(

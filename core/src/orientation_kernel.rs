@@ -29,7 +29,7 @@
 //! browser's build gives the same bits.
 
 use crate::dmp::Projections;
-use crate::orientation::PreparedOrientation;
+use crate::orientation::{OrientationRollout, PreparedOrientation};
 use wide::f64x4;
 
 use crate::rotation::{self, Q};
@@ -397,7 +397,7 @@ fn integrate_in<const L: usize, const PEAK: bool, const V: usize>(
     for start in (0..L).step_by(4 * V) {
         let at = |l: usize| km[(start + l).min(L - 1)];
         let chunk = each::<V>(|v| f64x4::new(std::array::from_fn(|c| at(4 * v + c))));
-        let (dc, pc) = integrate_chunk::<PEAK, V>(kernel, dm, &chunk);
+        let (dc, pc) = integrate_chunk::<PEAK, V, _>(kernel, dm, &chunk, &mut NoPath);
         let count = (4 * V).min(L - start);
         d[start..start + count].copy_from_slice(&dc[..count]);
         peak[start..start + count].copy_from_slice(&pc[..count]);
@@ -408,10 +408,11 @@ fn integrate_in<const L: usize, const PEAK: bool, const V: usize>(
 /// [`integrate`] for one chunk of `4 V` lanes: `d_rot` and `alpha_peak`
 /// per lane.
 #[inline(always)]
-fn integrate_chunk<const PEAK: bool, const V: usize>(
+fn integrate_chunk<const PEAK: bool, const V: usize, O: Observe<V>>(
     kernel: &RotKernel,
     dm: f64,
     km: &Lane<V>,
+    observer: &mut O,
 ) -> (Vec<f64>, Vec<f64>) {
     let n = kernel.forcing.len();
     let dt = 1.0 / (n.max(2) - 1) as f64;
@@ -425,7 +426,9 @@ fn integrate_chunk<const PEAK: bool, const V: usize>(
         for v in 0..V {
             err_sum[v] += if ends { half * theta[v] } else { theta[v] };
         }
+        observer.before(k, &lanes);
         let a = lanes.step(parts, dm, km, dt);
+        observer.after(&a);
         if PEAK {
             for v in 0..V {
                 let a2 = (a[0][v] * a[0][v] + a[1][v] * a[1][v] + a[2][v] * a[2][v]).to_array();
@@ -444,4 +447,74 @@ fn integrate_chunk<const PEAK: bool, const V: usize>(
     let dt = f64x4::splat(dt);
     let d = err_sum.iter().flat_map(|e| (*e * dt).to_array()).collect();
     (d, a2_max.into_iter().map(f64::sqrt).collect())
+}
+
+/// What [`integrate_chunk`] shows an observer around each step.
+trait Observe<const V: usize> {
+    /// The state before step `k`.
+    fn before(&mut self, k: usize, lanes: &Lanes<V>);
+    /// The angular acceleration the step took.
+    fn after(&mut self, a: &[Lane<V>; 3]);
+}
+
+/// The landscape's observer: nothing kept.
+struct NoPath;
+
+impl<const V: usize> Observe<V> for NoPath {
+    #[inline(always)]
+    fn before(&mut self, _k: usize, _lanes: &Lanes<V>) {}
+
+    #[inline(always)]
+    fn after(&mut self, _a: &[Lane<V>; 3]) {}
+}
+
+/// Keeps lane 0's path as [`crate::orientation::rollout_forcing`] records
+/// it.
+struct KeepPath {
+    start: Q,
+    goal: Q,
+    path: OrientationRollout,
+}
+
+impl Observe<1> for KeepPath {
+    fn before(&mut self, k: usize, lanes: &Lanes<1>) {
+        // q = conj(r) * q_g; the first is the start itself.
+        self.path.q.push(if k == 0 {
+            self.start
+        } else {
+            rotation::mul(rotation::conj(lanes.r(0)), self.goal)
+        });
+        self.path.w.push(lanes.w(0));
+    }
+
+    fn after(&mut self, a: &[Lane<1>; 3]) {
+        self.path.a.push(a.map(|v| v[0].as_array()[0]));
+    }
+}
+
+/// [`integrate`] at one gain pair that keeps the path too: `(d_rot,
+/// alpha_peak)` and the rollout from the kernel's own start (`start`, the
+/// orientation the kernel was made from) to `goal` (its goal), in one
+/// pass instead of two. Equal to the bit to `integrate::<1, true>` and to
+/// [`crate::orientation::rollout`] at the same gains (the forcing term
+/// `F0 + D F1 + K F2` sums in the same order).
+pub(crate) fn integrate_keeping_path(
+    kernel: &RotKernel,
+    dm: f64,
+    km: f64,
+    start: Q,
+    goal: Q,
+) -> ((f64, f64), OrientationRollout) {
+    let n = kernel.forcing.len();
+    let mut keep = KeepPath {
+        start,
+        goal,
+        path: OrientationRollout {
+            q: Vec::with_capacity(n),
+            w: Vec::with_capacity(n),
+            a: Vec::with_capacity(n),
+        },
+    };
+    let (d, peak) = integrate_chunk::<true, 1, _>(kernel, dm, &[f64x4::splat(km)], &mut keep);
+    ((d[0], peak[0]), keep.path)
 }

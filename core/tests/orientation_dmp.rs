@@ -146,6 +146,32 @@ fn planted_orientations_come_back_at_the_planted_gains() {
     assert!(worst < 0.1, "{worst} deg");
 }
 
+/// The operating point's one-pass evaluation (each demo's orientation
+/// integrated once for its d_rot and its path) gives what the two apart
+/// give, to the bit.
+#[test]
+fn the_one_pass_point_equals_the_evaluation_and_the_rollouts() {
+    let m = model(&planted_raw());
+    for (dm, km) in [(10.73, 20.71), (0.5, 900.0), (60.0, 0.2)] {
+        let (eval, turns) = m.evaluate_with_turns(dm, km);
+        assert_eq!(
+            format!("{eval:?}"),
+            format!("{:?}", m.evaluate(dm, km)),
+            "at ({dm}, {km})"
+        );
+        assert!(eval.d_rot.iter().all(|d| d.is_finite()));
+        assert_eq!(turns.len(), m.demos().len());
+        for (i, path) in turns.iter().enumerate() {
+            let apart = m.orientation_rollout(i, dm, km).expect("orientation");
+            assert_eq!(
+                format!("{path:?}"),
+                format!("{:?}", Some(apart)),
+                "demo {i}"
+            );
+        }
+    }
+}
+
 #[test]
 fn a_new_goal_and_start_orientation_are_reached() {
     use dmpscope_core::{Primitive, Target};

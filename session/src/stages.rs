@@ -366,14 +366,13 @@ impl Session {
         };
         let evaluated = self.point.ensure_now(key, |_| {
             let standardised = model.similarity().standardised(dm, km);
+            let (eval, turns) = model.evaluate_with_turns(dm, km);
             Ok(PointValue {
-                eval: model.evaluate(dm, km),
+                eval,
                 paths: (0..model.demos().len())
                     .map(|i| model.rollout(i, dm, km))
                     .collect(),
-                turns: (0..model.demos().len())
-                    .map(|i| model.orientation_rollout(i, dm, km))
-                    .collect(),
+                turns,
                 shares: standardised.shares(),
                 standardised,
             })
