@@ -5,8 +5,10 @@
 //! app's state as JSON, and `window.dmpscope_train(steps, seed)`, which
 //! starts RL training as the RL panel's Train button does (the extracted
 //! gains, the selected demo), so the test can compare the browser's
-//! learning curve with the native CLI's, and `window.dmpscope_grid(n)`,
-//! which sets an n x n grid as the grid settings do.
+//! learning curve with the native CLI's, `window.dmpscope_grid(n)`,
+//! which sets an n x n grid as the grid settings do, and
+//! `window.dmpscope_hide(mask)`, which leaves parts of the window out for
+//! `web/tests/frame_probe.mjs` (the bits: `gui::app`'s `part`).
 //!
 //! The app's work runs on [`WebExecutor`]: jobs in slices on the page's
 //! event loop, and the landscape's tiles, the diagnostics' resampled
@@ -43,8 +45,8 @@ fn wake_app() {
     });
 }
 
-/// Installs `window.dmpscope_state()`, `dmpscope_train()` and
-/// `dmpscope_grid()` over `hooks` (the app reads the requests and writes
+/// Installs `window.dmpscope_state()`, `dmpscope_train()`,
+/// `dmpscope_grid()` and `dmpscope_hide()` over `hooks` (the app reads the requests and writes
 /// the state every frame).
 #[cfg(feature = "testing")]
 fn install_hooks(hooks: &crate::gui::SharedHooks) {
