@@ -293,40 +293,23 @@ impl DmpApp {
                 panels::top_bar_ui(ui, &mut cx);
             }
         });
-        egui::Panel::left("side")
-            .frame(side_frame)
-            .default_size(330.0)
-            .min_size(280.0)
-            .show(ui, |ui| {
-                ui.set_min_size(ui.available_size());
-                if shown(part::SIDE) {
-                    egui::ScrollArea::vertical().show(ui, |ui| {
-                        panels::side_ui(ui, &mut cx);
-                    });
-                }
+        // The docked panels claim their whole size, so the layout does not
+        // depend on what the first frames had to show (files load off the
+        // frame).
+        let docked = |panel: egui::Panel, default: f32, min: f32| {
+            panel.frame(side_frame).default_size(default).min_size(min)
+        };
+        docked(egui::Panel::left("side"), 330.0, 280.0).show(ui, |ui| {
+            claim(ui, shown(part::SIDE), |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| panels::side_ui(ui, &mut cx));
             });
-        // Panels claim their whole size, so the layout does not depend on
-        // what the first frames had to show (files load off the frame).
-        egui::Panel::right("plots")
-            .frame(side_frame)
-            .default_size(380.0)
-            .min_size(340.0)
-            .show(ui, |ui| {
-                ui.set_min_size(ui.available_size());
-                if shown(part::PLOTS) {
-                    panels::plots_ui(ui, &mut cx);
-                }
-            });
-        egui::Panel::bottom("table")
-            .frame(side_frame)
-            .default_size(200.0)
-            .min_size(150.0)
-            .show(ui, |ui| {
-                ui.set_min_size(ui.available_size());
-                if shown(part::TABLE) {
-                    panels::table_ui(ui, &mut cx);
-                }
-            });
+        });
+        docked(egui::Panel::right("plots"), 380.0, 340.0).show(ui, |ui| {
+            claim(ui, shown(part::PLOTS), |ui| panels::plots_ui(ui, &mut cx));
+        });
+        docked(egui::Panel::bottom("table"), 200.0, 150.0).show(ui, |ui| {
+            claim(ui, shown(part::TABLE), |ui| panels::table_ui(ui, &mut cx));
+        });
         egui::CentralPanel::default()
             .frame(central_frame)
             .show(ui, |ui| {
@@ -373,6 +356,14 @@ impl DmpApp {
         } else {
             (side, central)
         }
+    }
+}
+
+/// Claims `ui`'s whole size and, when `shown`, adds the panel's content.
+fn claim(ui: &mut egui::Ui, shown: bool, add: impl FnOnce(&mut egui::Ui)) {
+    ui.set_min_size(ui.available_size());
+    if shown {
+        add(ui);
     }
 }
 
