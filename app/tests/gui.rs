@@ -534,6 +534,13 @@ fn the_clear_paints_the_background_and_the_panels_fill_less_than_the_window() {
                 .with_background_from_clear()
         });
     cleared.run_steps(3);
+    // The clear is the panels' colour, in either theme.
+    for visuals in [egui::Visuals::dark(), egui::Visuals::light()] {
+        assert_eq!(
+            eframe::App::clear_color(cleared.state(), &visuals),
+            visuals.panel_fill.to_normalized_gamma_f32()
+        );
+    }
     let (filled, cleared) = (painted_windows(&filled), painted_windows(&cleared));
     assert!(cleared < 1.0, "{cleared:.2} windows painted");
     assert!(

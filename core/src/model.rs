@@ -332,14 +332,13 @@ impl Model {
     ) -> (PointEval, Vec<Option<OrientationRollout>>) {
         let mut rot = Vec::with_capacity(self.demos.len());
         let mut turns = Vec::with_capacity(self.demos.len());
-        for (i, demo) in self.demos.iter().enumerate() {
+        for i in 0..self.demos.len() {
             let kernel = self.rot_kernels.get(i).and_then(Option::as_ref);
             // With separate orientation gains d_rot is fixed and the path
             // runs at those gains: two integrations, as before.
-            match (kernel, &demo.orientation, &self.rot_fixed) {
-                (Some(kernel), Some(o), None) => {
-                    let (error, path) =
-                        orientation_kernel::integrate_keeping_path(kernel, dm, km, o.q[0], o.goal);
+            match (kernel, &self.rot_fixed) {
+                (Some(kernel), None) => {
+                    let (error, path) = orientation_kernel::integrate_keeping_path(kernel, dm, km);
                     rot.push(error);
                     turns.push(Some(path));
                 }

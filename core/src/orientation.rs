@@ -223,7 +223,9 @@ pub fn rollout_forcing(
             rotation::mul(rotation::conj(lanes.r(0)), target.goal)
         });
         out.w.push(lanes.w(0));
-        let parts = f.map(|v| [v, 0.0, 0.0]);
+        // -0.0, not 0.0: `v + D (-0) + K (-0)` is `v` to the bit, a `-0`
+        // included, as the kernel's `F0 + D F1 + K F2` with the same sum.
+        let parts = f.map(|v| [v, -0.0, -0.0]);
         let a = lanes.step(&parts, dm, &[wide::f64x4::splat(km)], dt);
         out.a.push(a.map(|v| v[0].as_array()[0]));
     }

@@ -96,6 +96,9 @@ pub(crate) struct RotKernel {
     target: Vec<Q>,
     /// Where the rollout starts.
     start: Start,
+    /// The start orientation and the goal the kernel was made from (the
+    /// path [`integrate_keeping_path`] records).
+    ends: (Q, Q),
 }
 
 /// Where an orientation rollout starts: the rotation to go and the
@@ -130,6 +133,7 @@ impl RotKernel {
                 .map(|&t| rotation::mul(goal, rotation::conj(t)))
                 .collect(),
             start: Start::new(prepared.q[0], prepared.w[0], goal),
+            ends: (prepared.q[0], goal),
         }
     }
 }
@@ -493,19 +497,17 @@ impl Observe<1> for KeepPath {
 }
 
 /// [`integrate`] at one gain pair that keeps the path too: `(d_rot,
-/// alpha_peak)` and the rollout from the kernel's own start (`start`, the
-/// orientation the kernel was made from) to `goal` (its goal), in one
-/// pass instead of two. Equal to the bit to `integrate::<1, true>` and to
-/// [`crate::orientation::rollout`] at the same gains (the forcing term
-/// `F0 + D F1 + K F2` sums in the same order).
+/// alpha_peak)` and the rollout from the kernel's own start orientation to
+/// its goal, in one pass instead of two. Equal to the bit to
+/// `integrate::<1, true>` and to [`crate::orientation::rollout`] at the
+/// same gains (the forcing term `F0 + D F1 + K F2` sums in the same order).
 pub(crate) fn integrate_keeping_path(
     kernel: &RotKernel,
     dm: f64,
     km: f64,
-    start: Q,
-    goal: Q,
 ) -> ((f64, f64), OrientationRollout) {
     let n = kernel.forcing.len();
+    let (start, goal) = kernel.ends;
     let mut keep = KeepPath {
         start,
         goal,

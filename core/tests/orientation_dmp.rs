@@ -148,28 +148,50 @@ fn planted_orientations_come_back_at_the_planted_gains() {
 
 /// The operating point's one-pass evaluation (each demo's orientation
 /// integrated once for its d_rot and its path) gives what the two apart
-/// give, to the bit.
+/// give, to the bit; so do its other branches (separate orientation gains,
+/// no orientation error).
 #[test]
 fn the_one_pass_point_equals_the_evaluation_and_the_rollouts() {
-    let m = model(&planted_raw());
-    for (dm, km) in [(10.73, 20.71), (0.5, 900.0), (60.0, 0.2)] {
-        let (eval, turns) = m.evaluate_with_turns(dm, km);
-        assert_eq!(
-            format!("{eval:?}"),
-            format!("{:?}", m.evaluate(dm, km)),
-            "at ({dm}, {km})"
-        );
-        assert!(eval.d_rot.iter().all(|d| d.is_finite()));
-        assert_eq!(turns.len(), m.demos().len());
-        for (i, path) in turns.iter().enumerate() {
-            let apart = m.orientation_rollout(i, dm, km).expect("orientation");
+    let raw = planted_raw();
+    let prepared: Vec<_> = raw
+        .iter()
+        .map(|d| prepare(d, &PrepSettings::default()).expect("prepare"))
+        .collect();
+    let separate = DmpSettings {
+        orientation_gains: Some([20.0, 100.0]),
+        ..DmpSettings::default()
+    };
+    let m = model(&raw);
+    let models = [
+        ("one pass", m.clone()),
+        (
+            "separate gains",
+            Model::new(prepared, separate).expect("model"),
+        ),
+        ("no orientation error", m.without_orientation_error()),
+    ];
+    for (what, m) in &models {
+        for (dm, km) in [(10.73, 20.71), (0.5, 900.0), (60.0, 0.2)] {
+            let (eval, turns) = m.evaluate_with_turns(dm, km);
             assert_eq!(
-                format!("{path:?}"),
-                format!("{:?}", Some(apart)),
-                "demo {i}"
+                format!("{eval:?}"),
+                format!("{:?}", m.evaluate(dm, km)),
+                "{what} at ({dm}, {km})"
             );
+            assert_eq!(turns.len(), m.demos().len());
+            for (i, path) in turns.iter().enumerate() {
+                let apart = m.orientation_rollout(i, dm, km);
+                assert!(apart.is_some(), "{what}: demo {i} has an orientation");
+                assert_eq!(
+                    format!("{path:?}"),
+                    format!("{apart:?}"),
+                    "{what}: demo {i}"
+                );
+            }
         }
     }
+    let (eval, _) = models[0].1.evaluate_with_turns(10.73, 20.71);
+    assert!(eval.d_rot.iter().all(|d| d.is_finite()));
 }
 
 #[test]

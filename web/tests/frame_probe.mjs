@@ -63,17 +63,17 @@ try {
   };
   const panels = ["the top bar", "the side panel", "the plots panel", "the table panel", "the central panel"];
   const parts = [
-    ["nothing", 0],
+    ["nothing left out", 0],
     ...panels.map((p, i) => [p, 1 << i]),
     ["the 3D view's drawing", (1 << 8) | (1 << 6)],
-    ["nothing (3D view back)", 1 << 8],
+    ["nothing left out (3D view back)", 1 << 8],
     ["every panel's content", 31],
     ["every panel (a label only)", 1 << 5],
   ];
   for (const [name, mask] of process.env.TRACE_DUMP ? [] : parts) {
     await page.evaluate((m) => window.dmpscope_hide(m), mask | CONTINUOUS);
     await page.waitForTimeout(300);
-    console.log(`ms per frame without ${name}: ${(await perFrame()).toFixed(0)}`);
+    console.log(`ms per frame, ${name.startsWith("nothing") ? name : `without ${name}`}: ${(await perFrame()).toFixed(0)}`);
   }
   await page.evaluate(() => window.dmpscope_hide(0));
   const client = await context.newCDPSession(page);

@@ -97,8 +97,8 @@ impl DmpApp {
     /// does: the panels then draw no fill of their own. Under software
     /// rasterisers (SwiftShader in a browser without a GPU, lavapipe) each
     /// pixel egui fills costs as much as a texture lookup with both of its
-    /// shader's branches, so the window-sized fill was a quarter of a
-    /// frame there (docs/browser.md).
+    /// shader's branches, so the window-sized fill was about a third of
+    /// a frame there (docs/browser.md).
     pub fn with_background_from_clear(mut self) -> Self {
         self.clear_paints_background = true;
         self

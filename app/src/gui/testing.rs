@@ -22,8 +22,8 @@ pub struct TestHooks {
     pub grid: Vec<usize>,
     /// The app's state as JSON, written every frame.
     pub state: String,
-    /// Panels not drawn, for `web/tests/frame_probe.mjs`'s cost per panel:
-    /// bit 0 top bar, 1 side, 2 plots, 3 table, 4 central.
+    /// The parts of the window `web/tests/frame_probe.mjs` leaves out and
+    /// its other requests (frames back to back): bits of `app::part`.
     pub hide: u32,
 }
 

@@ -46,8 +46,8 @@ fn wake_app() {
 }
 
 /// Installs `window.dmpscope_state()`, `dmpscope_train()`,
-/// `dmpscope_grid()` and `dmpscope_hide()` over `hooks` (the app reads the requests and writes
-/// the state every frame).
+/// `dmpscope_grid()` and `dmpscope_hide()` over `hooks` (the app reads the
+/// requests and writes the state every frame).
 #[cfg(feature = "testing")]
 fn install_hooks(hooks: &crate::gui::SharedHooks) {
     use eframe::wasm_bindgen::prelude::Closure;
