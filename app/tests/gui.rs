@@ -519,21 +519,23 @@ fn painted_windows(h: &Harness<'_, DmpApp>) -> f64 {
 /// transparent, still draws it).
 #[test]
 fn the_clear_paints_the_background_and_the_panels_fill_less_than_the_window() {
-    let settings = Settings::with_grid_points(16);
-    let source = Source::Path(support::sample_path());
-    let mut filled = Harness::builder()
-        .with_size([1280.0, 800.0])
-        .build_eframe(move |_cc| DmpApp::with_runner(settings, vec![source], Runner::inline()));
-    filled.run_steps(3);
-    let settings = Settings::with_grid_points(16);
-    let source = Source::Path(support::sample_path());
-    let mut cleared = Harness::builder()
-        .with_size([1280.0, 800.0])
-        .build_eframe(move |_cc| {
-            DmpApp::with_runner(settings, vec![source], Runner::inline())
-                .with_background_from_clear()
-        });
-    cleared.run_steps(3);
+    let harness = |from_clear: bool| {
+        let settings = Settings::with_grid_points(16);
+        let source = Source::Path(support::sample_path());
+        let mut h = Harness::builder()
+            .with_size([1280.0, 800.0])
+            .build_eframe(move |_cc| {
+                let app = DmpApp::with_runner(settings, vec![source], Runner::inline());
+                if from_clear {
+                    app.with_background_from_clear()
+                } else {
+                    app
+                }
+            });
+        h.run_steps(3);
+        h
+    };
+    let (filled, cleared) = (harness(false), harness(true));
     // The clear is the panels' colour, in either theme.
     for visuals in [egui::Visuals::dark(), egui::Visuals::light()] {
         assert_eq!(

@@ -206,30 +206,20 @@ pub fn rollout_forcing(
     km: f64,
     target: OrientationTarget,
 ) -> OrientationRollout {
-    use crate::orientation_kernel::{Lanes, Start};
+    use crate::orientation_kernel::{KeepPath, Lanes, Observe as _, Start};
     let n = forcing.len();
     let dt = 1.0 / (n.max(2) - 1) as f64;
     let mut lanes = Lanes::<1>::new(Start::new(target.start, target.w0, target.goal));
-    let mut out = OrientationRollout {
-        q: Vec::with_capacity(n),
-        w: Vec::with_capacity(n),
-        a: Vec::with_capacity(n),
-    };
+    let mut keep = KeepPath::new(target.start, target.goal, n);
     for (k, f) in forcing.iter().enumerate() {
-        // q = conj(r) * q_g; the first is the start itself.
-        out.q.push(if k == 0 {
-            target.start
-        } else {
-            rotation::mul(rotation::conj(lanes.r(0)), target.goal)
-        });
-        out.w.push(lanes.w(0));
+        keep.before(k, &lanes);
         // -0.0, not 0.0: `v + D (-0) + K (-0)` is `v` to the bit, a `-0`
         // included, as the kernel's `F0 + D F1 + K F2` with the same sum.
         let parts = f.map(|v| [v, -0.0, -0.0]);
         let a = lanes.step(&parts, dm, &[wide::f64x4::splat(km)], dt);
-        out.a.push(a.map(|v| v[0].as_array()[0]));
+        keep.after(&a);
     }
-    out
+    keep.into_path()
 }
 
 /// A demo's orientation DMP at one gain pair, to run at a new start and

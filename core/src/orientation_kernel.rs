@@ -453,8 +453,9 @@ fn integrate_chunk<const PEAK: bool, const V: usize, O: Observe<V>>(
     (d, a2_max.into_iter().map(f64::sqrt).collect())
 }
 
-/// What [`integrate_chunk`] shows an observer around each step.
-trait Observe<const V: usize> {
+/// What [`integrate_chunk`] (and [`crate::orientation::rollout_forcing`])
+/// shows an observer around each step.
+pub(crate) trait Observe<const V: usize> {
     /// The state before step `k`.
     fn before(&mut self, k: usize, lanes: &Lanes<V>);
     /// The angular acceleration the step took.
@@ -472,12 +473,33 @@ impl<const V: usize> Observe<V> for NoPath {
     fn after(&mut self, _a: &[Lane<V>; 3]) {}
 }
 
-/// Keeps lane 0's path as [`crate::orientation::rollout_forcing`] records
-/// it.
-struct KeepPath {
+/// Keeps lane 0's path: the orientation before each step (the start
+/// itself first), its angular velocity and the step's angular
+/// acceleration; what every orientation rollout returns.
+pub(crate) struct KeepPath {
     start: Q,
     goal: Q,
     path: OrientationRollout,
+}
+
+impl KeepPath {
+    /// An empty path of a run from `start` to `goal` of `n` steps.
+    pub(crate) fn new(start: Q, goal: Q, n: usize) -> Self {
+        Self {
+            start,
+            goal,
+            path: OrientationRollout {
+                q: Vec::with_capacity(n),
+                w: Vec::with_capacity(n),
+                a: Vec::with_capacity(n),
+            },
+        }
+    }
+
+    /// The path kept.
+    pub(crate) fn into_path(self) -> OrientationRollout {
+        self.path
+    }
 }
 
 impl Observe<1> for KeepPath {
@@ -506,17 +528,8 @@ pub(crate) fn integrate_keeping_path(
     dm: f64,
     km: f64,
 ) -> ((f64, f64), OrientationRollout) {
-    let n = kernel.forcing.len();
     let (start, goal) = kernel.ends;
-    let mut keep = KeepPath {
-        start,
-        goal,
-        path: OrientationRollout {
-            q: Vec::with_capacity(n),
-            w: Vec::with_capacity(n),
-            a: Vec::with_capacity(n),
-        },
-    };
+    let mut keep = KeepPath::new(start, goal, kernel.forcing.len());
     let (d, peak) = integrate_chunk::<true, 1, _>(kernel, dm, &[f64x4::splat(km)], &mut keep);
-    ((d[0], peak[0]), keep.path)
+    ((d[0], peak[0]), keep.into_path())
 }

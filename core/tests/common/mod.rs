@@ -1,7 +1,8 @@
 //! Helpers shared by the test binaries that build, corrupt and load MCAP
 //! files (`bad_input`, `alloc_limits`) or read the bundled samples
-//! (`report`, `recovery`, `golden_orientation_grid`, `kernel_dispatch`). Each binary includes this module with
-//! `mod common;`; not every binary uses every helper.
+//! (`report`, `recovery`, `golden_orientation_grid`, `kernel_dispatch`).
+//! Each binary includes this module with `mod common;`; not every binary
+//! uses every helper.
 
 #![allow(dead_code)]
 
@@ -210,26 +211,30 @@ pub fn close(actual: f64, expected: f64, tol: f64, what: impl std::fmt::Display)
 /// The bundled reach sample's demos (`assets/reach10.mcap`), read as the
 /// app and the CLI read it.
 pub fn sample_demos() -> Vec<RawDemo> {
-    let bytes = include_bytes!("../../../assets/reach10.mcap");
-    dmpscope_core::io::load_source(
+    bundled(
         "reach10.mcap",
-        dmpscope_core::io::SourceData::Bytes(bytes),
-        &dmpscope_core::io::LoadOptions::default(),
+        include_bytes!("../../../assets/reach10.mcap"),
     )
-    .expect("the bundled sample loads")
-    .demos
 }
 
 /// The bundled planted sample's demos (`assets/planted8.mcap`: eight
 /// demos with orientations), read as the app and the CLI read it.
 pub fn planted8_demos() -> Vec<RawDemo> {
-    let bytes = include_bytes!("../../../assets/planted8.mcap");
-    dmpscope_core::io::load_source(
+    bundled(
         "planted8.mcap",
+        include_bytes!("../../../assets/planted8.mcap"),
+    )
+}
+
+/// The demos of the bundled recording `name` (its bytes), loaded with the
+/// default options.
+fn bundled(name: &str, bytes: &[u8]) -> Vec<RawDemo> {
+    dmpscope_core::io::load_source(
+        name,
         dmpscope_core::io::SourceData::Bytes(bytes),
         &dmpscope_core::io::LoadOptions::default(),
     )
-    .expect("the bundled planted sample loads")
+    .unwrap_or_else(|e| panic!("the bundled {name} loads: {e}"))
     .demos
 }
 
