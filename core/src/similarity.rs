@@ -157,6 +157,9 @@ pub struct Standardised {
     /// `sqrt(sigma_fx^2 + sigma_fy^2 + sigma_fz^2)` per grid point (0 with
     /// fewer than two demos): `S` is its trapezoid integral.
     pub sigma: Vec<f64>,
+    /// Each demo's `q_i` of [`Standardised::shares`], summed in the same
+    /// pass as `sigma` (the operating point's, every frame of a drag).
+    q: Vec<f64>,
 }
 
 impl Similarity {
@@ -181,7 +184,8 @@ impl Similarity {
         }
     }
 
-    /// Every demo's `f_stand` and the integrand of `S` at `(dm, km)`.
+    /// Every demo's `f_stand` and the integrand of `S` at `(dm, km)`, with
+    /// each demo's share of it, in one pass over the grid.
     pub fn standardised(&self, dm: f64, km: f64) -> Standardised {
         let (n, nd) = (self.n, self.demos);
         let mut inv = vec![0.0; 3 * nd];
@@ -191,31 +195,37 @@ impl Similarity {
             }
         }
         let mut f = vec![vec![[0.0; 3]; n]; nd];
+        let mut sigma = vec![0.0; n];
+        let mut q = vec![0.0; nd];
+        // One grid point's values across the demos, for one axis.
+        let mut across = vec![0.0; nd];
         for k in 0..n {
-            for axis in 0..3 {
-                for (di, &[a, b, c]) in self.parts[(k * 3 + axis) * nd..][..nd].iter().enumerate() {
-                    f[di][k][axis] = (a + dm * b + km * c) * inv[axis * nd + di];
+            let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
+            let mut var = [0.0; 3];
+            for (axis, var) in var.iter_mut().enumerate() {
+                let parts = &self.parts[(k * 3 + axis) * nd..][..nd];
+                for (di, &[a, b, c]) in parts.iter().enumerate() {
+                    let v = (a + dm * b + km * c) * inv[axis * nd + di];
+                    f[di][k][axis] = v;
+                    across[di] = v;
                 }
+                if nd < 2 {
+                    continue;
+                }
+                let mean = across.iter().sum::<f64>() / nd as f64;
+                let mut sq = 0.0;
+                for (qi, &v) in q.iter_mut().zip(&across) {
+                    let e = v - mean;
+                    sq += e * e;
+                    *qi += w * e * e;
+                }
+                *var = sq / (nd - 1) as f64;
+            }
+            if nd >= 2 {
+                sigma[k] = var.iter().sum::<f64>().sqrt();
             }
         }
-        let sigma = (0..n)
-            .map(|k| {
-                if nd < 2 {
-                    return 0.0;
-                }
-                let var: f64 = (0..3)
-                    .map(|axis| {
-                        let mean = f.iter().map(|d| d[k][axis]).sum::<f64>() / nd as f64;
-                        f.iter()
-                            .map(|d| (d[k][axis] - mean) * (d[k][axis] - mean))
-                            .sum::<f64>()
-                            / (nd - 1) as f64
-                    })
-                    .sum();
-                var.sqrt()
-            })
-            .collect();
-        Standardised { f, sigma }
+        Standardised { f, sigma, q }
     }
 
     /// Each demo's share of S at `(dm, km)` ([`Standardised::shares`]).
@@ -235,23 +245,12 @@ impl Standardised {
         if nd < 2 || n < 2 {
             return None;
         }
-        let mut q = vec![0.0; nd];
-        for k in 0..n {
-            let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
-            for axis in 0..3 {
-                let mean = self.f.iter().map(|d| d[k][axis]).sum::<f64>() / nd as f64;
-                for (qi, d) in q.iter_mut().zip(&self.f) {
-                    let e = d[k][axis] - mean;
-                    *qi += w * e * e;
-                }
-            }
-        }
         let dt = 1.0 / (n - 1) as f64;
-        let total: f64 = q.iter().map(|v| v * dt).sum();
+        let total: f64 = self.q.iter().map(|v| v * dt).sum();
         if total <= 0.0 {
             return Some(vec![1.0 / nd as f64; nd]);
         }
-        Some(q.iter().map(|v| v * dt / total).collect())
+        Some(self.q.iter().map(|v| v * dt / total).collect())
     }
 }
 

@@ -186,3 +186,36 @@ fn single_demo_has_zero_similarity() {
         .map_or_else(|| f(&single["d"]), |a| f(&a[0]));
     close(e.d[0], d, REL, "single demo d");
 }
+
+/// `standardised` sums sigma_f and each demo's share of S in one pass; the
+/// numbers are the definitions' (method.md section 9) to the bit.
+#[test]
+fn the_one_pass_sigma_and_shares_are_the_definitions() {
+    let m = model();
+    for (dm, km) in [(25.0, 156.25), (3.0, 700.0), (60.0, 2.5)] {
+        let st = m.similarity().standardised(dm, km);
+        let (nd, n) = (st.f.len(), st.sigma.len());
+        assert!(nd >= 2 && n >= 2);
+        let mut q = vec![0.0; nd];
+        for k in 0..n {
+            let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
+            let var: f64 = (0..3)
+                .map(|axis| {
+                    let mean = st.f.iter().map(|d| d[k][axis]).sum::<f64>() / nd as f64;
+                    for (qi, d) in q.iter_mut().zip(&st.f) {
+                        *qi += w * (d[k][axis] - mean) * (d[k][axis] - mean);
+                    }
+                    st.f.iter()
+                        .map(|d| (d[k][axis] - mean) * (d[k][axis] - mean))
+                        .sum::<f64>()
+                        / (nd - 1) as f64
+                })
+                .sum();
+            assert_eq!(st.sigma[k].to_bits(), var.sqrt().to_bits(), "sigma at {k}");
+        }
+        let dt = 1.0 / (n - 1) as f64;
+        let total: f64 = q.iter().map(|v| v * dt).sum();
+        let shares: Vec<f64> = q.iter().map(|v| v * dt / total).collect();
+        assert_eq!(st.shares(), Some(shares), "shares at ({dm}, {km})");
+    }
+}

@@ -400,13 +400,26 @@ impl Session {
     /// Every demo's standardised forcing term and sigma_f at the operating
     /// point.
     pub fn forcing_terms(&self) -> Option<&Standardised> {
-        self.point.value().map(|p| &p.standardised)
+        self.point_standardised().map(|(s, _)| s)
     }
 
     /// Each model demo's share of S at the operating point (`None` with
     /// one demo).
     pub fn point_shares(&self) -> Option<&[f64]> {
-        self.point.value().and_then(|p| p.shares.as_deref())
+        self.point_standardised()
+            .and_then(|(_, shares)| shares.as_deref())
+    }
+
+    /// The operating point's standardised forcing terms and shares of S,
+    /// computed on first use.
+    fn point_standardised(&self) -> Option<&(Standardised, Option<Vec<f64>>)> {
+        let model = self.model()?;
+        let p = self.point.value()?;
+        Some(p.standardised.get_or_init(|| {
+            let standardised = model.similarity().standardised(p.eval.dm, p.eval.km);
+            let shares = standardised.shares();
+            (standardised, shares)
+        }))
     }
 
     /// Table I for the k of the last update: extracted (when known), the

@@ -3,7 +3,7 @@
 //! before it and hands it to its [`Stage`], which recomputes only when the
 //! key differs (called in order by [`Session::update`]).
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use dmpscope_core::arrange::unique_names;
 use dmpscope_core::diagnostics::DiagSettings;
@@ -92,10 +92,11 @@ pub(crate) struct PointValue {
     pub(crate) paths: Vec<Rollout>,
     /// Every demo's regenerated orientation (`None` without one).
     pub(crate) turns: Vec<Option<OrientationRollout>>,
-    /// Every demo's standardised forcing term and sigma_f there.
-    pub(crate) standardised: Standardised,
-    /// Each demo's share of S there (`None` with one demo).
-    pub(crate) shares: Option<Vec<f64>>,
+    /// Every demo's standardised forcing term and sigma_f there, and each
+    /// demo's share of S (`None` with one demo): computed when first asked
+    /// for ([`Session::forcing_terms`]), as the views that show them are
+    /// mostly closed while the point is dragged.
+    pub(crate) standardised: OnceLock<(Standardised, Option<Vec<f64>>)>,
 }
 
 impl Session {
@@ -365,7 +366,6 @@ impl Session {
             km: km.to_bits(),
         };
         let evaluated = self.point.ensure_now(key, |_| {
-            let standardised = model.similarity().standardised(dm, km);
             let (eval, turns) = model.evaluate_with_turns(dm, km);
             Ok(PointValue {
                 eval,
@@ -373,8 +373,7 @@ impl Session {
                     .map(|i| model.rollout(i, dm, km))
                     .collect(),
                 turns,
-                shares: standardised.shares(),
-                standardised,
+                standardised: OnceLock::new(),
             })
         });
         self.runs.points += usize::from(evaluated);

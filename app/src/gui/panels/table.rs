@@ -11,22 +11,35 @@ use eframe::egui;
 use super::PanelCtx;
 
 /// The Table I panel.
+///
+/// The table is wider than the panel (three columns per demo), so only the
+/// cells inside the visible part are laid out; the others keep last
+/// frame's width ([`Columns`]). The operating point's row changes every
+/// frame of a drag, and laying out all its cells cost about a tenth of the
+/// frame.
 pub fn table_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
-    let Some(report) = cx.session.report() else {
+    let Some(model) = cx.session.model() else {
         return;
     };
+    let rows = cx.session.table_rows();
     ui.horizontal(|ui| {
         ui.label(egui::RichText::new("Table I").strong());
-        if ui.button("Copy Markdown").clicked() {
+        if ui.button("Copy Markdown").clicked()
+            && let Some(report) = cx.session.report()
+        {
             ui.ctx().copy_text(report.markdown());
         }
-        if ui.button("Copy CSV").clicked() {
+        if ui.button("Copy CSV").clicked()
+            && let Some(report) = cx.session.report()
+        {
             ui.ctx().copy_text(report.csv());
         }
     });
-    let names = report.demo_names();
-    let oriented = report.oriented();
+    let oriented = rows.iter().any(TableRow::oriented);
+    let names: Vec<&str> = model.demos().iter().map(|d| d.name.as_str()).collect();
     egui::ScrollArea::horizontal().show(ui, |ui| {
+        let id = ui.scope_id().with("table-i-columns");
+        let mut columns = Columns::load(ui, id);
         egui::Grid::new("table-i").striped(true).show(ui, |ui| {
             for h in [
                 "gains",
@@ -40,11 +53,11 @@ pub fn table_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
                 "mean d_mean [mm]",
                 "max a_peak",
             ] {
-                ui.label(egui::RichText::new(h).strong());
+                columns.cell(ui, || egui::RichText::new(h).strong());
             }
             if oriented {
                 for h in ["sum d_rot [deg]", "max alpha_peak"] {
-                    ui.label(egui::RichText::new(h).strong());
+                    columns.cell(ui, || egui::RichText::new(h).strong());
                 }
             }
             let mut prefixes = vec![("d", "mm"), ("e", "mm")];
@@ -53,30 +66,87 @@ pub fn table_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             }
             for (prefix, unit) in prefixes {
                 for (i, name) in names.iter().enumerate() {
-                    let title = format!("{prefix} {} [{unit}]", short(name, i));
-                    ui.label(egui::RichText::new(title).strong());
+                    columns.cell(ui, || {
+                        let title = format!("{prefix} {} [{unit}]", short(name, i));
+                        egui::RichText::new(title).strong()
+                    });
                 }
             }
-            ui.end_row();
-            for r in &report.table {
-                row(ui, r, oriented);
-                ui.end_row();
+            columns.end_row(ui);
+            for r in &rows {
+                row(ui, &mut columns, r, oriented);
+                columns.end_row(ui);
             }
         });
+        columns.store(ui, id);
     });
 }
 
-fn row(ui: &mut egui::Ui, r: &TableRow, oriented: bool) {
+/// The grid's column widths, remembered from frame to frame: a cell out of
+/// sight takes its column's width without being formatted or laid out.
+struct Columns {
+    /// Each column's width last frame (empty on the first frame).
+    last: Vec<f32>,
+    /// Each column's width this frame, so far.
+    now: Vec<f32>,
+    /// The next cell's column.
+    col: usize,
+}
+
+impl Columns {
+    fn load(ui: &egui::Ui, id: egui::Id) -> Self {
+        Self {
+            last: ui.data(|d| d.get_temp::<Vec<f32>>(id)).unwrap_or_default(),
+            now: Vec::new(),
+            col: 0,
+        }
+    }
+
+    fn store(self, ui: &egui::Ui, id: egui::Id) {
+        ui.data_mut(|d| d.insert_temp(id, self.now));
+    }
+
+    /// The next cell: `text()` laid out as a label where it can be seen,
+    /// else empty space as wide as the column was.
+    fn cell<T: Into<egui::WidgetText>>(&mut self, ui: &mut egui::Ui, text: impl FnOnce() -> T) {
+        let height = ui.spacing().interact_size.y;
+        let width = match self.last.get(self.col) {
+            Some(&w)
+                if !ui.is_rect_visible(egui::Rect::from_min_size(
+                    ui.cursor().min,
+                    egui::vec2(w, height),
+                )) =>
+            {
+                ui.allocate_space(egui::vec2(w, 0.0));
+                w
+            }
+            _ => ui.label(text()).rect.width(),
+        };
+        if self.now.len() <= self.col {
+            self.now.resize(self.col + 1, 0.0);
+        }
+        self.now[self.col] = self.now[self.col].max(width);
+        self.col += 1;
+    }
+
+    fn end_row(&mut self, ui: &mut egui::Ui) {
+        ui.end_row();
+        self.col = 0;
+    }
+}
+
+fn row(ui: &mut egui::Ui, columns: &mut Columns, r: &TableRow, oriented: bool) {
     let c = r.cells(false);
     for cell in &c[..8] {
-        ui.label(cell);
+        columns.cell(ui, || cell.as_str());
     }
-    let mean = r.d_mean.iter().sum::<f64>() / r.d_mean.len().max(1) as f64;
-    ui.label(format!("{:.3}", mean * 1e3));
-    ui.label(format!(
-        "{:.2}",
-        r.a_peak.iter().fold(0.0f64, |a, &b| a.max(b))
-    ));
+    columns.cell(ui, || {
+        let mean = r.d_mean.iter().sum::<f64>() / r.d_mean.len().max(1) as f64;
+        format!("{:.3}", mean * 1e3)
+    });
+    columns.cell(ui, || {
+        format!("{:.2}", r.a_peak.iter().fold(0.0f64, |a, &b| a.max(b)))
+    });
     let largest = |v: &[f64]| {
         v.iter()
             .copied()
@@ -84,15 +154,15 @@ fn row(ui: &mut egui::Ui, r: &TableRow, oriented: bool) {
             .fold(0.0f64, f64::max)
     };
     if oriented {
-        ui.label(format!("{:.4}", r.d_rot_sum));
-        ui.label(format!("{:.2}", largest(&r.alpha_peak)));
+        columns.cell(ui, || format!("{:.4}", r.d_rot_sum));
+        columns.cell(ui, || format!("{:.2}", largest(&r.alpha_peak)));
     }
     for d in r.d_mean.iter().chain(&r.e) {
-        ui.label(format!("{:.3}", d * 1e3));
+        columns.cell(ui, || format!("{:.3}", d * 1e3));
     }
     if oriented {
         for d in &r.d_rot {
-            ui.label(format!("{d:.4}"));
+            columns.cell(ui, || format!("{d:.4}"));
         }
     }
 }
