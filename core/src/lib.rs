@@ -43,6 +43,7 @@ pub mod nelder_mead;
 pub mod notice;
 pub mod orientation;
 mod orientation_kernel;
+mod orientation_point;
 pub mod pipeline;
 pub mod planted;
 mod planted_orientation;

@@ -15,6 +15,7 @@ use crate::error::{Error, Result};
 use crate::geom::Vec3;
 use crate::orientation::OrientationRollout;
 use crate::orientation_kernel::{self, RotKernel};
+use crate::orientation_point;
 use crate::position_kernel::{DemoKernel, integrate};
 use crate::prepare::PreparedDemo;
 use crate::quantity::{self, PointValues, Quantity};
@@ -332,23 +333,32 @@ impl Model {
     ) -> (PointEval, Vec<Option<OrientationRollout>>) {
         let mut rot = Vec::with_capacity(self.demos.len());
         let mut turns = Vec::with_capacity(self.demos.len());
-        for i in 0..self.demos.len() {
-            let kernel = self.rot_kernels.get(i).and_then(Option::as_ref);
+        if self.rot_fixed.is_none() {
+            // Every demo with an orientation, four at a time, one per lane.
+            let kernels: Vec<&RotKernel> = self.rot_kernels.iter().flatten().collect();
+            let mut done = orientation_point::integrate_demos(&kernels, dm, km).into_iter();
+            for (i, kernel) in self.rot_kernels.iter().enumerate() {
+                match kernel.as_ref().and_then(|_| done.next()) {
+                    Some((error, path)) => {
+                        rot.push(error);
+                        turns.push(Some(path));
+                    }
+                    // No kernel: no orientation, or no orientation error.
+                    None => {
+                        rot.push((f64::NAN, f64::NAN));
+                        turns.push(self.orientation_rollout(i, dm, km));
+                    }
+                }
+            }
+        } else {
             // With separate orientation gains d_rot is fixed and the path
-            // runs at those gains: two integrations, as before.
-            match (kernel, &self.rot_fixed) {
-                (Some(kernel), None) => {
-                    let (error, path) = orientation_kernel::integrate_keeping_path(kernel, dm, km);
-                    rot.push(error);
-                    turns.push(Some(path));
-                }
-                _ => {
-                    rot.push(
-                        self.rotation_error(i, dm, km)
-                            .unwrap_or((f64::NAN, f64::NAN)),
-                    );
-                    turns.push(self.orientation_rollout(i, dm, km));
-                }
+            // runs at those gains: two integrations.
+            for i in 0..self.demos.len() {
+                rot.push(
+                    self.rotation_error(i, dm, km)
+                        .unwrap_or((f64::NAN, f64::NAN)),
+                );
+                turns.push(self.orientation_rollout(i, dm, km));
             }
         }
         (self.evaluate_with_rot(dm, km, rot), turns)

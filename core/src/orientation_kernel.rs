@@ -90,15 +90,15 @@ const EXP_SERIES_MAX: f64 = 2.5e-3;
 #[derive(Clone, Debug)]
 pub(crate) struct RotKernel {
     /// Per grid point: `[F0, F1, F2]` per axis of the forcing term.
-    forcing: Vec<[[f64; 3]; 3]>,
+    pub(crate) forcing: Vec<[[f64; 3]; 3]>,
     /// Per grid point: `q_g * conj(q_raw)`, the error's target seen from
     /// the goal.
-    target: Vec<Q>,
+    pub(crate) target: Vec<Q>,
     /// Where the rollout starts.
-    start: Start,
+    pub(crate) start: Start,
     /// The start orientation and the goal the kernel was made from (the
-    /// path [`integrate_keeping_path`] records).
-    ends: (Q, Q),
+    /// path `orientation_point` records).
+    pub(crate) ends: (Q, Q),
 }
 
 /// Where an orientation rollout starts: the rotation to go and the
@@ -147,6 +147,15 @@ const V_LANDSCAPE: usize = 4;
 /// A value per lane: `V` vectors of four.
 pub(crate) type Lane<const V: usize> = [f64x4; V];
 
+/// One axis of a step's forcing term per lane: `F0 + D F1` and `F2`, the
+/// step's term being `F0 + D F1 + K F2`.
+pub(crate) struct Forcing<const V: usize> {
+    /// `F0 + D F1`.
+    pub(crate) fd: Lane<V>,
+    /// `F2`.
+    pub(crate) f2: Lane<V>,
+}
+
 /// The state of `4 V` orientation rollouts that share D/M.
 pub(crate) struct Lanes<const V: usize> {
     /// The rotation to go per component.
@@ -155,6 +164,17 @@ pub(crate) struct Lanes<const V: usize> {
     w: [Lane<V>; 3],
     /// Steps taken (the renormalisation's schedule).
     steps: usize,
+}
+
+impl Lanes<1> {
+    /// Four lanes, each at its own start.
+    pub(crate) fn from_starts(starts: [Start; 4]) -> Self {
+        Self {
+            r: std::array::from_fn(|c| [f64x4::new(starts.map(|s| s.r0[c]))]),
+            w: std::array::from_fn(|c| [f64x4::new(starts.map(|s| s.w0[c]))]),
+            steps: 0,
+        }
+    }
 }
 
 /// `f` of each vector of lanes.
@@ -187,10 +207,15 @@ impl<const V: usize> Lanes<V> {
     /// `q_g * conj(q_raw)`.
     #[inline(always)]
     pub(crate) fn angle(&self, target: Q) -> Lane<V> {
-        let t = target.map(f64x4::splat);
+        self.angle_of(target.map(|c| [f64x4::splat(c); V]))
+    }
+
+    /// [`Lanes::angle`] with a target per lane (its components).
+    #[inline(always)]
+    pub(crate) fn angle_of(&self, t: [Lane<V>; 4]) -> Lane<V> {
         let r = &self.r;
         let c = each::<V>(|v| {
-            (r[0][v] * t[0] + r[1][v] * t[1] + r[2][v] * t[2] + r[3][v] * t[3]).abs()
+            (r[0][v] * t[0][v] + r[1][v] * t[1][v] + r[2][v] * t[2][v] + r[3][v] * t[3][v]).abs()
         });
         // min(1, c) as 1 - c >= 0; a NaN state (a diverged run) stays NaN.
         let x = each::<V>(|v| {
@@ -212,6 +237,23 @@ impl<const V: usize> Lanes<V> {
         km: &Lane<V>,
         dt: f64,
     ) -> [Lane<V>; 3] {
+        let forcing = parts.map(|[f0, f1, f2]| Forcing {
+            fd: [f64x4::splat(f0 + dm * f1); V],
+            f2: [f64x4::splat(f2); V],
+        });
+        self.step_with(&forcing, dm, km, &[f64x4::splat(dt); V])
+    }
+
+    /// [`Lanes::step`] with the forcing term and the time step given per
+    /// lane (lanes of different demos).
+    #[inline(always)]
+    pub(crate) fn step_with(
+        &mut self,
+        forcing: &[Forcing<V>; 3],
+        dm: f64,
+        km: &Lane<V>,
+        dt: &Lane<V>,
+    ) -> [Lane<V>; 3] {
         // 2 log(r) = 2 H(1 - r_w) vec(r), exact where r_w < 0.
         let h = horner(&H, each::<V>(|v| ONE - self.r[3][v]));
         let mut factor = each::<V>(|v| TWO * h[v]);
@@ -227,18 +269,17 @@ impl<const V: usize> Lanes<V> {
                 factor[v] = f64x4::new(f);
             }
         }
-        let (dmv, dtv) = (f64x4::splat(dm), f64x4::splat(dt));
+        let dmv = f64x4::splat(dm);
         let a: [Lane<V>; 3] = std::array::from_fn(|ax| {
-            let [f0, f1, f2] = parts[ax];
-            let (fd, f2) = (f64x4::splat(f0 + dm * f1), f64x4::splat(f2));
+            let Forcing { fd, f2 } = &forcing[ax];
             each(|v| {
                 let rv = factor[v] * self.r[ax][v];
-                -dmv * self.w[ax][v] + km[v] * rv + (fd + km[v] * f2)
+                -dmv * self.w[ax][v] + km[v] * rv + (fd[v] + km[v] * f2[v])
             })
         });
         for ax in 0..3 {
             for v in 0..V {
-                self.w[ax][v] += a[ax][v] * dtv;
+                self.w[ax][v] += a[ax][v] * dt[v];
             }
         }
         self.steps += 1;
@@ -249,9 +290,9 @@ impl<const V: usize> Lanes<V> {
     /// `r <- r * conj(exp(w dt / 2))`, then, when `renormalise`, back to
     /// unit norm.
     #[inline(always)]
-    fn turn(&mut self, dt: f64, renormalise: bool) {
-        let half = f64x4::splat(0.5 * dt);
-        let u = self.w.map(|w| w.map(|w| w * half));
+    fn turn(&mut self, dt: &Lane<V>, renormalise: bool) {
+        let half = dt.map(|dt| f64x4::splat(0.5) * dt);
+        let u = self.w.map(|w| each::<V>(|v| w[v] * half[v]));
         let s = each::<V>(|v| u[0][v] * u[0][v] + u[1][v] * u[1][v] + u[2][v] * u[2][v]);
         // sin|u| / |u| and cos|u| by their series in s = |u|^2: short where
         // s is small (the usual step), longer where it is not, lane by lane.
@@ -473,12 +514,14 @@ impl<const V: usize> Observe<V> for NoPath {
     fn after(&mut self, _a: &[Lane<V>; 3]) {}
 }
 
-/// Keeps lane 0's path: the orientation before each step (the start
-/// itself first), its angular velocity and the step's angular
-/// acceleration; what every orientation rollout returns.
+/// Keeps one lane's path (lane 0 unless [`KeepPath::in_lane`]): the
+/// orientation before each step (the start itself first), its angular
+/// velocity and the step's angular acceleration; what every orientation
+/// rollout returns.
 pub(crate) struct KeepPath {
     start: Q,
     goal: Q,
+    lane: usize,
     path: OrientationRollout,
 }
 
@@ -488,12 +531,18 @@ impl KeepPath {
         Self {
             start,
             goal,
+            lane: 0,
             path: OrientationRollout {
                 q: Vec::with_capacity(n),
                 w: Vec::with_capacity(n),
                 a: Vec::with_capacity(n),
             },
         }
+    }
+
+    /// The same, keeping lane `lane` of the four.
+    pub(crate) fn in_lane(self, lane: usize) -> Self {
+        Self { lane, ..self }
     }
 
     /// The path kept.
@@ -508,28 +557,12 @@ impl Observe<1> for KeepPath {
         self.path.q.push(if k == 0 {
             self.start
         } else {
-            rotation::mul(rotation::conj(lanes.r(0)), self.goal)
+            rotation::mul(rotation::conj(lanes.r(self.lane)), self.goal)
         });
-        self.path.w.push(lanes.w(0));
+        self.path.w.push(lanes.w(self.lane));
     }
 
     fn after(&mut self, a: &[Lane<1>; 3]) {
-        self.path.a.push(a.map(|v| v[0].as_array()[0]));
+        self.path.a.push(a.map(|v| v[0].as_array()[self.lane]));
     }
-}
-
-/// [`integrate`] at one gain pair that keeps the path too: `(d_rot,
-/// alpha_peak)` and the rollout from the kernel's own start orientation to
-/// its goal, in one pass instead of two. Equal to the bit to
-/// `integrate::<1, true>` and to [`crate::orientation::rollout`] at the
-/// same gains (the forcing term `F0 + D F1 + K F2` sums in the same order).
-pub(crate) fn integrate_keeping_path(
-    kernel: &RotKernel,
-    dm: f64,
-    km: f64,
-) -> ((f64, f64), OrientationRollout) {
-    let (start, goal) = kernel.ends;
-    let mut keep = KeepPath::new(start, goal, kernel.forcing.len());
-    let (d, peak) = integrate_chunk::<true, 1, _>(kernel, dm, &[f64x4::splat(km)], &mut keep);
-    ((d[0], peak[0]), keep.into_path())
 }

@@ -162,8 +162,15 @@ fn the_one_pass_point_equals_the_evaluation_and_the_rollouts() {
         ..DmpSettings::default()
     };
     let m = model(&raw);
+    // The demos four at a time, one per lane: groups of four and fewer,
+    // and demos without orientation between them.
+    let mut mixed = raw[..6].to_vec();
+    mixed[1].orientations = None;
+    mixed[4].orientations = None;
     let models = [
         ("one pass", m.clone()),
+        ("five demos", model(&raw[..5])),
+        ("mixed", model(&mixed)),
         (
             "separate gains",
             Model::new(prepared, separate).expect("model"),
@@ -181,7 +188,8 @@ fn the_one_pass_point_equals_the_evaluation_and_the_rollouts() {
             assert_eq!(turns.len(), m.demos().len());
             for (i, path) in turns.iter().enumerate() {
                 let apart = m.orientation_rollout(i, dm, km);
-                assert!(apart.is_some(), "{what}: demo {i} has an orientation");
+                let has = m.demos()[i].orientation.is_some();
+                assert_eq!(apart.is_some(), has, "{what}: demo {i}");
                 assert_eq!(
                     format!("{path:?}"),
                     format!("{apart:?}"),

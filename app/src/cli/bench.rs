@@ -221,6 +221,27 @@ fn orientation_figures(
         grid.dm.n,
         w / wo
     );
+    // The operating point (a drag's work per frame): every demo's numbers
+    // and orientation path in one pass, four demos a lane each, against
+    // the evaluation and each demo's rollout apart.
+    let (dm, km) = (25.0, 156.25);
+    let (mut one_ms, mut apart_ms) = (Vec::new(), Vec::new());
+    for _ in 0..50 * repeat {
+        let t = Instant::now();
+        std::hint::black_box(model.evaluate_with_turns(dm, km));
+        one_ms.push(t.elapsed().as_secs_f64() * 1e3);
+        let t = Instant::now();
+        std::hint::black_box(model.evaluate(dm, km));
+        for i in 0..model.demos().len() {
+            std::hint::black_box(model.orientation_rollout(i, dm, km));
+        }
+        apart_ms.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    println!(
+        "operating point with orientation, {on} (median): {:8.3} ms   (with the paths; apart: {:.3} ms)",
+        median(&one_ms),
+        median(&apart_ms)
+    );
     Ok(())
 }
 
