@@ -550,3 +550,35 @@ fn the_clear_paints_the_background_and_the_panels_fill_less_than_the_window() {
         "the panels' fills: {filled:.2} windows against {cleared:.2}"
     );
 }
+
+/// Table I lays out only the cells in sight (it is three columns per demo
+/// wide); scrolling it brings the others in, at the width they had.
+#[test]
+fn table_i_lays_out_the_cells_in_sight_and_scrolls_to_the_rest() {
+    let mut h = harness();
+    let last = "e demo_10 [mm]";
+    assert_eq!(h.query_all_by_label(last).count(), 0, "out of sight");
+    let csv = h.state().session().report().expect("report").csv();
+    assert!(csv.contains("demo_10"), "the copy has every column: {csv}");
+    let at = h.get_by_label("Operating point").rect().center();
+    for _ in 0..40 {
+        h.hover_at(at);
+        h.event(egui::Event::MouseWheel {
+            unit: egui::MouseWheelUnit::Point,
+            delta: egui::vec2(-200.0, 0.0),
+            phase: egui::TouchPhase::Move,
+            source: egui::MouseWheelSource::Wheel,
+            modifiers: egui::Modifiers::default(),
+        });
+        h.run_steps(2);
+        if h.query_all_by_label(last).count() > 0 {
+            break;
+        }
+    }
+    assert_eq!(h.query_all_by_label(last).count(), 1, "scrolled in");
+    assert_eq!(
+        h.query_all_by_label("Operating point").count(),
+        0,
+        "the first column scrolled out"
+    );
+}
