@@ -9,9 +9,26 @@
 #   goal        the New target tab on, its goal dragged in the 3D view
 # Prints the summary the app writes with DMPSCOPE_FRAME_LOG (frame intervals
 # and egui CPU time per frame, recorded once the landscape is complete).
+# RUNS=N runs it N times and prints each run's CPU median and their median
+# (one run's median varies by about 0.2 ms here).
 set -euo pipefail
+self="$(cd "$(dirname "$0")" && pwd)/$(basename "$0")"
 cd "$(dirname "$0")/.."
 what=${1:-op}
+runs=${RUNS:-1}
+if [ "$runs" -gt 1 ]; then
+  medians=()
+  for r in $(seq 1 "$runs"); do
+    line=$(RUNS=1 "$self" "$what" | grep '^cpu_ms')
+    echo "run $r: $line"
+    medians+=("$(awk '{print $3}' <<<"$line")")
+  done
+  printf '%s\n' "${medians[@]}" | sort -n | awk '{a[NR] = $1} END {
+    m = NR % 2 ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2
+    printf "cpu_ms median of %d runs %.2f (run medians %.2f-%.2f)\n", NR, m, a[1], a[NR]
+  }'
+  exit 0
+fi
 log=$(mktemp)
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d)}
 DMPSCOPE_FRAME_LOG="$log" ./target/release/dmpscope > /dev/null 2>&1 &
