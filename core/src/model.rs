@@ -331,36 +331,23 @@ impl Model {
         dm: f64,
         km: f64,
     ) -> (PointEval, Vec<Option<OrientationRollout>>) {
-        let mut rot = Vec::with_capacity(self.demos.len());
-        let mut turns = Vec::with_capacity(self.demos.len());
-        if self.rot_fixed.is_none() {
+        let (rot, turns) = match &self.rot_fixed {
             // Every demo with an orientation, four at a time, one per lane.
-            let kernels: Vec<&RotKernel> = self.rot_kernels.iter().flatten().collect();
-            let mut done = orientation_point::integrate_demos(&kernels, dm, km).into_iter();
-            for (i, kernel) in self.rot_kernels.iter().enumerate() {
-                match kernel.as_ref().and_then(|_| done.next()) {
-                    Some((error, path)) => {
-                        rot.push(error);
-                        turns.push(Some(path));
-                    }
-                    // No kernel: no orientation, or no orientation error.
-                    None => {
-                        rot.push((f64::NAN, f64::NAN));
-                        turns.push(self.orientation_rollout(i, dm, km));
-                    }
-                }
-            }
-        } else {
+            None => orientation_point::evaluate(&self.rot_kernels, dm, km, |i| {
+                self.orientation_rollout(i, dm, km)
+            }),
             // With separate orientation gains d_rot is fixed and the path
-            // runs at those gains: two integrations.
-            for i in 0..self.demos.len() {
-                rot.push(
-                    self.rotation_error(i, dm, km)
-                        .unwrap_or((f64::NAN, f64::NAN)),
-                );
-                turns.push(self.orientation_rollout(i, dm, km));
-            }
-        }
+            // runs at those gains.
+            Some(_) => (0..self.demos.len())
+                .map(|i| {
+                    let error = self.rotation_error(i, dm, km);
+                    (
+                        error.unwrap_or((f64::NAN, f64::NAN)),
+                        self.orientation_rollout(i, dm, km),
+                    )
+                })
+                .unzip(),
+        };
         (self.evaluate_with_rot(dm, km, rot), turns)
     }
 

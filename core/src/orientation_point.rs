@@ -19,16 +19,38 @@ use wide::f64x4;
 use crate::orientation::OrientationRollout;
 use crate::orientation_kernel::{Forcing, KeepPath, Lanes, Observe as _, RotKernel};
 
+/// Each demo's `(d_rot, alpha_peak)` and regenerated orientation at
+/// `(dm, km)`, in the model's order: from its kernel where it has one, else
+/// `(NaN, NaN)` and `path(i)` (no orientation, or no orientation error).
+pub(crate) fn evaluate(
+    kernels: &[Option<RotKernel>],
+    dm: f64,
+    km: f64,
+    path: impl Fn(usize) -> Option<OrientationRollout>,
+) -> (Vec<(f64, f64)>, Vec<Option<OrientationRollout>>) {
+    let present: Vec<&RotKernel> = kernels.iter().flatten().collect();
+    let mut done = integrate_demos(&present, dm, km).into_iter();
+    kernels
+        .iter()
+        .enumerate()
+        .map(
+            |(i, kernel)| match kernel.as_ref().and_then(|_| done.next()) {
+                Some((error, turns)) => (error, Some(turns)),
+                None => ((f64::NAN, f64::NAN), path(i)),
+            },
+        )
+        .unzip()
+}
+
 /// `(d_rot, alpha_peak)` and the regenerated path of each kernel at
 /// `(dm, km)`, in order.
-pub(crate) fn integrate_demos(
+fn integrate_demos(
     kernels: &[&RotKernel],
     dm: f64,
     km: f64,
 ) -> Vec<((f64, f64), OrientationRollout)> {
-    let one_grid = kernels
-        .windows(2)
-        .all(|w| w[0].forcing.len() == w[1].forcing.len());
+    let len = |k: &RotKernel| (k.forcing.len(), k.target.len());
+    let one_grid = kernels.windows(2).all(|w| len(w[0]) == len(w[1]));
     kernels
         .chunks(if one_grid { 4 } else { 1 })
         .flat_map(|group| four(group, dm, km))
@@ -42,7 +64,10 @@ fn four(group: &[&RotKernel], dm: f64, km: f64) -> Vec<((f64, f64), OrientationR
         return Vec::new();
     };
     let kernel = |l: usize| group.get(l).copied().unwrap_or(last);
+    // As the kernel's own loop: the time step from the forcing term's
+    // length, the steps as far as both lists go.
     let n = last.forcing.len();
+    let steps = n.min(last.target.len());
     let dt = 1.0 / (n.max(2) - 1) as f64;
     let (dt_lanes, km_lanes) = ([f64x4::splat(dt)], [f64x4::splat(km)]);
     let mut lanes = Lanes::from_starts(from_fn(|l| kernel(l).start));
@@ -53,7 +78,7 @@ fn four(group: &[&RotKernel], dm: f64, km: f64) -> Vec<((f64, f64), OrientationR
         .collect();
     let mut err_sum = f64x4::ZERO;
     let mut a2_max = [0.0f64; 4];
-    for k in 0..n {
+    for k in 0..steps {
         let target = from_fn(|c| [f64x4::new(from_fn(|l| kernel(l).target[k][c]))]);
         let theta = lanes.angle_of(target)[0];
         err_sum += if k == 0 || k + 1 == n {

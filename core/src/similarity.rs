@@ -158,7 +158,8 @@ pub struct Standardised {
     /// fewer than two demos): `S` is its trapezoid integral.
     pub sigma: Vec<f64>,
     /// Each demo's `q_i` of [`Standardised::shares`], summed in the same
-    /// pass as `sigma` (the operating point's, every frame of a drag).
+    /// pass as `sigma`: the shares are those of `f` as computed, not of
+    /// later edits to it.
     q: Vec<f64>,
 }
 
@@ -238,7 +239,8 @@ impl Standardised {
     /// Each demo's share of S (method.md section 9):
     /// `q_i = integral sum_axes (f_stand(i) - mean_j f_stand(j))^2`,
     /// `share_i = q_i / sum_j q_j`; `None` with fewer than two demos, equal
-    /// shares when every demo's term is the same.
+    /// shares when every demo's term is the same. The `q_i` were summed
+    /// when [`Similarity::standardised`] computed `f`.
     pub fn shares(&self) -> Option<Vec<f64>> {
         let nd = self.f.len();
         let n = self.sigma.len();

@@ -167,10 +167,25 @@ fn the_one_pass_point_equals_the_evaluation_and_the_rollouts() {
     let mut mixed = raw[..6].to_vec();
     mixed[1].orientations = None;
     mixed[4].orientations = None;
+    // A demo that turns 206 degrees beside three that turn little: its
+    // lane takes the exact log (a rotation to go past 180 degrees) while
+    // the others take the polynomial.
+    let mut branches = raw[..3].to_vec();
+    branches.insert(
+        1,
+        turning(
+            "far",
+            rotation::exp([0.1, 0.0, 0.0]),
+            [0.2, 1.0, 0.3],
+            3.6,
+            2.0,
+        ),
+    );
     let models = [
         ("one pass", m.clone()),
         ("five demos", model(&raw[..5])),
         ("mixed", model(&mixed)),
+        ("mixed branches", model(&branches)),
         (
             "separate gains",
             Model::new(prepared, separate).expect("model"),

@@ -169,8 +169,10 @@ fn landscape_times(
 }
 
 /// The landscape with the orientation error `d_rot` (method.md section 12)
-/// against the same landscape without it, alternated: on `model` when its
-/// demos have orientations, else on the bundled planted sample.
+/// against the same landscape without it, alternated, and the operating
+/// point with every demo's orientation path (a drag's work per frame)
+/// against the evaluation and the paths computed apart: on `model` when
+/// its demos have orientations, else on the bundled planted sample.
 fn orientation_figures(
     model: &std::sync::Arc<dmpscope_core::Model>,
     grid: Grid,
@@ -223,7 +225,8 @@ fn orientation_figures(
     );
     // The operating point (a drag's work per frame): every demo's numbers
     // and orientation path in one pass, four demos a lane each, against
-    // the evaluation and each demo's rollout apart.
+    // the evaluation and each demo's rollout apart (two integrations of
+    // each demo's orientation, one lane each).
     let (dm, km) = (25.0, 156.25);
     let (mut one_ms, mut apart_ms) = (Vec::new(), Vec::new());
     for _ in 0..50 * repeat {
@@ -238,7 +241,7 @@ fn orientation_figures(
         apart_ms.push(t.elapsed().as_secs_f64() * 1e3);
     }
     println!(
-        "operating point with orientation, {on} (median): {:8.3} ms   (with the paths; apart: {:.3} ms)",
+        "operating point with orientation, {on} (median): {:8.3} ms   (with the paths; evaluation and paths apart: {:.3} ms)",
         median(&one_ms),
         median(&apart_ms)
     );

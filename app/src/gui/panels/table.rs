@@ -38,7 +38,8 @@ pub fn table_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let oriented = rows.iter().any(TableRow::oriented);
     let names: Vec<&str> = model.demos().iter().map(|d| d.name.as_str()).collect();
     egui::ScrollArea::horizontal().show(ui, |ui| {
-        let id = ui.scope_id().with("table-i-columns");
+        // The widths are remembered for these columns only.
+        let id = ui.scope_id().with(("table-i-columns", oriented, &names));
         let mut columns = Columns::load(ui, id);
         egui::Grid::new("table-i").striped(true).show(ui, |ui| {
             for h in [
@@ -83,12 +84,15 @@ pub fn table_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
 }
 
 /// The grid's column widths, remembered from frame to frame: a cell out of
-/// sight takes its column's width without being formatted or laid out.
+/// sight takes its column's width without being formatted or laid out (so
+/// it has no AccessKit node either, as rows out of sight in a
+/// `ScrollArea::show_rows`).
 struct Columns {
-    /// Each column's width last frame (empty on the first frame).
+    /// Each column's width last frame (empty on the first frame for these
+    /// columns: every cell is laid out).
     last: Vec<f32>,
-    /// Each column's width this frame, so far.
-    now: Vec<f32>,
+    /// Each column's widest cell laid out this frame (`None`: none was).
+    now: Vec<Option<f32>>,
     /// The next cell's column.
     col: usize,
 }
@@ -102,15 +106,26 @@ impl Columns {
         }
     }
 
+    /// Keeps this frame's widths: a column none of whose cells was laid
+    /// out keeps last frame's.
     fn store(self, ui: &egui::Ui, id: egui::Id) {
-        ui.data_mut(|d| d.insert_temp(id, self.now));
+        let widths: Vec<f32> = self
+            .now
+            .iter()
+            .enumerate()
+            .map(|(col, w)| w.or_else(|| self.last.get(col).copied()).unwrap_or(0.0))
+            .collect();
+        ui.data_mut(|d| d.insert_temp(id, widths));
     }
 
     /// The next cell: `text()` laid out as a label where it can be seen,
     /// else empty space as wide as the column was.
     fn cell<T: Into<egui::WidgetText>>(&mut self, ui: &mut egui::Ui, text: impl FnOnce() -> T) {
+        if self.now.len() <= self.col {
+            self.now.resize(self.col + 1, None);
+        }
         let height = ui.spacing().interact_size.y;
-        let width = match self.last.get(self.col) {
+        match self.last.get(self.col) {
             Some(&w)
                 if !ui.is_rect_visible(egui::Rect::from_min_size(
                     ui.cursor().min,
@@ -118,14 +133,13 @@ impl Columns {
                 )) =>
             {
                 ui.allocate_space(egui::vec2(w, 0.0));
-                w
             }
-            _ => ui.label(text()).rect.width(),
-        };
-        if self.now.len() <= self.col {
-            self.now.resize(self.col + 1, 0.0);
+            _ => {
+                let w = ui.label(text()).rect.width();
+                let now = &mut self.now[self.col];
+                *now = Some(now.map_or(w, |n| n.max(w)));
+            }
         }
-        self.now[self.col] = self.now[self.col].max(width);
         self.col += 1;
     }
 
