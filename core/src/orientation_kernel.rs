@@ -86,6 +86,9 @@ const RENORMALISE_EVERY: usize = 16;
 /// The largest `|u|^2` for which `exp(u)` takes its Taylor series.
 const EXP_SERIES_MAX: f64 = 2.5e-3;
 
+// A lane past the short series' range is tested for the libm fallback.
+const _: () = assert!(EXP_SERIES_MAX > EXP_SHORT_MAX);
+
 /// One demo's orientation laid out for the kernel.
 #[derive(Clone, Debug)]
 pub(crate) struct RotKernel {
@@ -257,16 +260,23 @@ impl<const V: usize> Lanes<V> {
         // 2 log(r) = 2 H(1 - r_w) vec(r), exact where r_w < 0.
         let h = horner(&H, each::<V>(|v| ONE - self.r[3][v]));
         let mut factor = each::<V>(|v| TWO * h[v]);
-        for v in 0..V {
-            let rw = self.r[3][v].to_array();
-            if rw.iter().any(|&c| c < 0.0) {
-                let mut f = factor[v].to_array();
-                for l in 0..4 {
-                    if rw[l] < 0.0 {
-                        f[l] = 2.0 * exact_log_factor(self.r(4 * v + l));
+        // One test for all the vectors in the usual step (no lane past 180
+        // degrees), then vector by vector.
+        let past = (1..V).fold(self.r[3][0].simd_lt(f64x4::ZERO), |m, v| {
+            m | self.r[3][v].simd_lt(f64x4::ZERO)
+        });
+        if past.any() {
+            for v in 0..V {
+                let rw = self.r[3][v].to_array();
+                if rw.iter().any(|&c| c < 0.0) {
+                    let mut f = factor[v].to_array();
+                    for l in 0..4 {
+                        if rw[l] < 0.0 {
+                            f[l] = 2.0 * exact_log_factor(self.r(4 * v + l));
+                        }
                     }
+                    factor[v] = f64x4::new(f);
                 }
-                factor[v] = f64x4::new(f);
             }
         }
         let dmv = f64x4::splat(dm);
@@ -299,26 +309,31 @@ impl<const V: usize> Lanes<V> {
         let mut sinc = horner(&SINC_SHORT, s);
         let mut cos = horner(&COS_SHORT, s);
         let short_max = f64x4::splat(EXP_SHORT_MAX);
-        for v in 0..V {
-            let longer = s[v].simd_gt(short_max);
-            if longer.any() {
-                sinc[v] = longer.bitselect(horner(&SINC, [s[v]])[0], sinc[v]);
-                cos[v] = longer.bitselect(horner(&COS, [s[v]])[0], cos[v]);
-            }
-        }
-        for v in 0..V {
-            let sa = s[v].to_array();
-            if sa.iter().any(|&s| s > EXP_SERIES_MAX) {
-                let (mut sn, mut cs) = (sinc[v].to_array(), cos[v].to_array());
-                for l in 0..4 {
-                    if sa[l] > EXP_SERIES_MAX {
-                        let n = sa[l].sqrt();
-                        sn[l] = libm::sin(n) / n;
-                        cs[l] = libm::cos(n);
-                    }
+        // One test for all the vectors in the usual step (every lane short;
+        // EXP_SERIES_MAX is above EXP_SHORT_MAX), then vector by vector.
+        let long = (1..V).fold(s[0].simd_gt(short_max), |m, v| m | s[v].simd_gt(short_max));
+        if long.any() {
+            for v in 0..V {
+                let longer = s[v].simd_gt(short_max);
+                if longer.any() {
+                    sinc[v] = longer.bitselect(horner(&SINC, [s[v]])[0], sinc[v]);
+                    cos[v] = longer.bitselect(horner(&COS, [s[v]])[0], cos[v]);
                 }
-                sinc[v] = f64x4::new(sn);
-                cos[v] = f64x4::new(cs);
+            }
+            for v in 0..V {
+                let sa = s[v].to_array();
+                if sa.iter().any(|&s| s > EXP_SERIES_MAX) {
+                    let (mut sn, mut cs) = (sinc[v].to_array(), cos[v].to_array());
+                    for l in 0..4 {
+                        if sa[l] > EXP_SERIES_MAX {
+                            let n = sa[l].sqrt();
+                            sn[l] = libm::sin(n) / n;
+                            cs[l] = libm::cos(n);
+                        }
+                    }
+                    sinc[v] = f64x4::new(sn);
+                    cos[v] = f64x4::new(cs);
+                }
             }
         }
         // e = (sinc u, cos); r * conj(e) with conj(e) = (-sinc u, cos).
