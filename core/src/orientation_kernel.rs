@@ -14,7 +14,9 @@
 //! rounding size.
 //!
 //! The transcendental functions are polynomials where their arguments
-//! allow, so the lanes vectorise: with `x = 1 - c` for a unit quaternion's
+//! allow, so the lanes vectorise (`H` and `P` evaluated as their even and
+//! odd halves in `x^2`, two chains of half the length: 476 -> 460 ms for
+//! the planted8 d_rot landscape against one Horner chain): with `x = 1 - c` for a unit quaternion's
 //! scalar part `c` in [0, 1], `atan2(|v|, c) / |v| = H(x)` and
 //! `acos(c) = sqrt(2 x) P(x)`, `H` and `P` Chebyshev interpolants on
 //! [0, 1] (relative errors 3.9e-10 for `P`, which only weighs the error
@@ -225,7 +227,7 @@ impl<const V: usize> Lanes<V> {
             let x = ONE - c[v];
             x.is_nan().bitselect(x, x.max(f64x4::ZERO))
         });
-        let p = horner(&P, x);
+        let p = horner_split(&P, x);
         each(|v| TWO * (TWO * x[v]).sqrt() * p[v])
     }
 
@@ -258,7 +260,7 @@ impl<const V: usize> Lanes<V> {
         dt: &Lane<V>,
     ) -> [Lane<V>; 3] {
         // 2 log(r) = 2 H(1 - r_w) vec(r), exact where r_w < 0.
-        let h = horner(&H, each::<V>(|v| ONE - self.r[3][v]));
+        let h = horner_split(&H, each::<V>(|v| ONE - self.r[3][v]));
         let mut factor = each::<V>(|v| TWO * h[v]);
         // One test for all the vectors in the usual step (no lane past 180
         // degrees), then vector by vector.
@@ -380,6 +382,33 @@ fn horner<const N: usize, const V: usize>(c: &[f64; N], x: Lane<V>) -> Lane<V> {
         }
     }
     p
+}
+
+/// `c[0] + c[1] x + ...` per lane as `E(x^2) + x O(x^2)`, the even and
+/// odd coefficients each by Horner: two chains of half the length, which
+/// the lanes' vectors overlap.
+#[inline(always)]
+fn horner_split<const N: usize, const V: usize>(c: &[f64; N], x: Lane<V>) -> Lane<V> {
+    let x2 = each::<V>(|v| x[v] * x[v]);
+    let last_even = (N - 1) & !1;
+    let last_odd = if N % 2 == 0 { N - 1 } else { N - 2 };
+    let mut even = [f64x4::splat(c[last_even]); V];
+    let mut odd = [f64x4::splat(c[last_odd]); V];
+    for k in (0..last_even).step_by(2).rev() {
+        let ck = f64x4::splat(c[k]);
+        for v in 0..V {
+            even[v] = even[v] * x2[v] + ck;
+        }
+    }
+    let mut k = last_odd;
+    while k >= 3 {
+        k -= 2;
+        let ck = f64x4::splat(c[k]);
+        for v in 0..V {
+            odd[v] = odd[v] * x2[v] + ck;
+        }
+    }
+    each(|v| even[v] + x[v] * odd[v])
 }
 
 /// `sin(sqrt(s)) / sqrt(s)` to `s^2`, for `s <= EXP_SHORT_MAX`.
