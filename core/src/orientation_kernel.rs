@@ -391,7 +391,7 @@ fn horner<const N: usize, const V: usize>(c: &[f64; N], x: Lane<V>) -> Lane<V> {
 fn horner_split<const N: usize, const V: usize>(c: &[f64; N], x: Lane<V>) -> Lane<V> {
     let x2 = each::<V>(|v| x[v] * x[v]);
     let last_even = (N - 1) & !1;
-    let last_odd = if N % 2 == 0 { N - 1 } else { N - 2 };
+    let last_odd = if N.is_multiple_of(2) { N - 1 } else { N - 2 };
     let mut even = [f64x4::splat(c[last_even]); V];
     let mut odd = [f64x4::splat(c[last_odd]); V];
     for k in (0..last_even).step_by(2).rev() {
