@@ -44,6 +44,7 @@ pub mod notice;
 pub mod orientation;
 mod orientation_kernel;
 mod orientation_point;
+mod orientation_poly;
 pub mod pipeline;
 pub mod planted;
 mod planted_orientation;
