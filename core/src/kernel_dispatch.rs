@@ -101,6 +101,18 @@ impl<K: Kernel> pulp::WithSimd for Call<K> {
     }
 }
 
+/// The larger of `kept` and `x`, keeping `kept` where `x` is NaN: what
+/// `kept.max(x)` gives for a `kept` that is not NaN, written as a compare
+/// and a select. `f64::max` is IEEE `maxNum`, which WebAssembly lacks (its
+/// `f64.max` propagates NaN), so on wasm32 LLVM compiles every `max` into
+/// a call to `fmax`: one call per lane and step, and a loop around it that
+/// is not vectorised. The select is one `f64x2.pmax` there (and one
+/// `vmaxpd` natively, against `maxNum`'s three instructions).
+#[inline(always)]
+pub(crate) fn larger(kept: f64, x: f64) -> f64 {
+    if x > kept { x } else { kept }
+}
+
 /// The instruction set the kernels run with now (for `bench`).
 pub fn instruction_set() -> &'static str {
     #[cfg(target_arch = "x86_64")]

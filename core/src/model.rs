@@ -404,7 +404,7 @@ impl Model {
             let (d, a) = integrate::<L, true>(kernel, dm, km);
             for l in 0..L {
                 d_sum[l] += d[l];
-                peak[l] = peak[l].max(a[l]);
+                peak[l] = crate::kernel_dispatch::larger(peak[l], a[l]);
             }
         }
         let mut e_sum = [0.0; L];

@@ -125,7 +125,7 @@ fn integrate_lanes<const L: usize, const PEAK: bool>(
         for l in 0..L {
             err_sum[l] += w * e2[l].sqrt();
             if PEAK {
-                du2_max[l] = du2_max[l].max(du2[l]);
+                du2_max[l] = crate::kernel_dispatch::larger(du2_max[l], du2[l]);
             }
         }
     }

@@ -140,7 +140,10 @@ impl Similarity {
             }
             let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
             for l in 0..L {
-                total[l] += w * var_sum[l].max(0.0).sqrt();
+                // max(var, 0) (NaN gives 0), as a compare and a select (see
+                // `kernel_dispatch::larger`).
+                let v = if var_sum[l] > 0.0 { var_sum[l] } else { 0.0 };
+                total[l] += w * v.sqrt();
             }
         }
         let dt = 1.0 / (n - 1) as f64;
