@@ -42,13 +42,14 @@ if [ "$(wasm-bindgen --version 2>/dev/null | awk '{print $2}')" != "$version" ];
 fi
 $install_only && exit 0
 
-# The `web` profile: built for size, the core for speed (Cargo.toml).
-cargo build --profile web -p dmpscope --bin dmpscope --target wasm32-unknown-unknown "${features[@]}"
+# The `web` profile: built for size, the core for speed, from the small
+# entry crate web/entry (Cargo.toml says why).
+cargo build --profile web -p dmpscope-web --target wasm32-unknown-unknown "${features[@]}"
 out=web/dist
 rm -rf "$out"
 mkdir -p "$out"
 wasm-bindgen --target web --no-typescript --out-dir "$out" --out-name dmpscope \
-  target/wasm32-unknown-unknown/web/dmpscope.wasm
+  target/wasm32-unknown-unknown/web/dmpscope-web.wasm
 cp web/index.html web/worker.js "$out/"
 ls -l "$out" >&2
 echo "built $out; serve it with: python3 -m http.server -d $out 8080" >&2

@@ -9,6 +9,37 @@ import init, * as dmpscope from "./dmpscope.js";
 
 let ready = null;
 
+// Tiles and parts wait in a queue and are computed one per task, so that a
+// message that comes while they wait is seen between two of them: a
+// "forget" drops the queued pieces of its generation (the page hands out
+// many at once so that the worker keeps computing while the page draws).
+const queue = [];
+const pump_channel = new MessageChannel();
+let pumping = false;
+
+function schedule() {
+  if (!pumping && queue.length > 0) {
+    pumping = true;
+    pump_channel.port2.postMessage(null);
+  }
+}
+
+pump_channel.port1.onmessage = () => {
+  pumping = false;
+  const m = queue.shift();
+  if (m !== undefined) {
+    try {
+      const values = m.kind === "tile"
+        ? dmpscope.dmpscope_worker_tile(m.generation, m.payload)
+        : dmpscope.dmpscope_worker_part(m.generation, m.payload);
+      self.postMessage({ kind: "answer", generation: m.generation, piece: m.piece, values }, [values.buffer]);
+    } catch (e) {
+      self.postMessage({ kind: "error", generation: m.generation, piece: m.piece, error: String(e) });
+    }
+  }
+  schedule();
+};
+
 // Trains an RL run in ~20 ms slices, letting messages (tiles, forget) in
 // between; posts an update after every iteration and the last one.
 function pump(generation, piece) {
@@ -59,16 +90,16 @@ self.onmessage = async (event) => {
         pump(m.generation, m.piece);
         break;
       case "forget":
+        for (let i = queue.length - 1; i >= 0; i--) {
+          if (queue[i].generation === m.generation) queue.splice(i, 1);
+        }
         dmpscope.dmpscope_worker_forget(m.generation);
         break;
       case "tile":
-      case "part": {
-        const values = m.kind === "tile"
-          ? dmpscope.dmpscope_worker_tile(m.generation, m.payload)
-          : dmpscope.dmpscope_worker_part(m.generation, m.payload);
-        self.postMessage({ kind: "answer", generation: m.generation, piece: m.piece, values }, [values.buffer]);
+      case "part":
+        queue.push(m);
+        schedule();
         break;
-      }
       default:
         throw new Error("unknown message " + m.kind);
     }

@@ -32,6 +32,10 @@ pub struct Snapshot {
     pub done: usize,
     /// Points in all.
     pub total: usize,
+    /// Wall time from the start of the fill to this snapshot, on the
+    /// executor's clock (the browser tests' landscape time: from the first
+    /// tile handed out to the last one stored on the page).
+    pub elapsed: Duration,
 }
 
 impl Snapshot {
@@ -49,6 +53,7 @@ pub struct LandscapeWork {
     parallel: bool,
     computed: Duration,
     next_preview: Duration,
+    started: Duration,
 }
 
 /// Where the points are computed.
@@ -73,6 +78,7 @@ impl LandscapeWork {
     /// its workers where it has them, here otherwise.
     pub fn new(model: Arc<Model>, grid: Grid, runner: &Runner) -> Result<Self> {
         let clock = runner.clock();
+        let started = clock.now();
         let pooled = match runner.workers() {
             Some(workers) => PoolFill::start(&workers, &model, grid, clock.clone())?,
             None => None,
@@ -88,6 +94,7 @@ impl LandscapeWork {
             parallel: runner.parallel(),
             computed: Duration::ZERO,
             next_preview: FIRST_PREVIEW,
+            started,
         })
     }
 
@@ -100,6 +107,7 @@ impl LandscapeWork {
             landscape: landscape.clone(),
             done,
             total,
+            elapsed: self.clock.now().saturating_sub(self.started),
         }
     }
 }

@@ -23,11 +23,14 @@ use crate::workers::{Exchanged, Generation, Handout, Setup, Workers};
 /// Points per tile: about 8 ms of one core.
 pub const TILE_POINTS: usize = 128;
 
-/// Tiles a worker holds at once: enough queued work (a few milliseconds
-/// each) that it keeps computing while the page's thread draws a frame
-/// (which hands out no tile), few enough that a cancelled landscape wastes
-/// little.
-pub const TILES_IN_FLIGHT: usize = 16;
+/// Tiles a worker holds at once: enough queued work that it keeps
+/// computing while the page's thread draws a frame (which hands out no
+/// tile; under a software rasteriser 150-900 ms while the workers hold the
+/// cores), so with two workers the whole 128 x 128 landscape (128 tiles) is
+/// handed out at once. A cancelled landscape wastes no more for it: the
+/// worker drops the tiles it has not started when told to forget them
+/// (`web/worker.js`).
+pub const TILES_IN_FLIGHT: usize = 64;
 /// Time an exchange may spend computing when no worker is left.
 const HERE_BUDGET: Duration = Duration::from_millis(8);
 

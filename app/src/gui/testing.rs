@@ -172,9 +172,11 @@ impl DmpApp {
     pub fn test_state(&self, ctx: &egui::Context) -> serde_json::Value {
         let session = self.session();
         let (dm, km) = self.settings.op;
-        let (done, total) = session
-            .shown()
-            .map_or((0, 0), |s| (s.snapshot.done, s.snapshot.total));
+        let (done, total, elapsed_ms) = session.shown().map_or((0, 0, 0.0), |s| {
+            let snapshot = &s.snapshot;
+            let ms = snapshot.elapsed.as_secs_f64() * 1e3;
+            (snapshot.done, snapshot.total, ms)
+        });
         let regen_checksum: Option<f64> = session.model().map(|_| {
             session
                 .paths()
@@ -213,7 +215,7 @@ impl DmpApp {
                 .iter()
                 .map(|(name, r)| (name.to_string(), [r.min.x, r.min.y, r.width(), r.height()]))
                 .collect::<std::collections::BTreeMap<_, _>>(),
-            "landscape": {"done": done, "total": total},
+            "landscape": {"done": done, "total": total, "elapsed_ms": elapsed_ms},
             "landscape_points_here": crate::session::landscape::points_computed_here(),
             "workers": session.worker_stats(),
             "regen_checksum": regen_checksum,

@@ -60,12 +60,40 @@ async fn yield_to_browser() {
     let _ = wasm_bindgen_futures::JsFuture::from(promise).await;
 }
 
+thread_local! {
+    /// Whether the page has painted its first frame ([`after_first_paint`]).
+    static PAINTED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Waits, once per page, until the page has painted its first frame: two
+/// animation frames from now (or half a second each in a hidden tab, which
+/// has none). The workers start with the page; jobs that would set them
+/// computing wait for the window to show first, as under a software
+/// rasteriser the first frame (300-700 ms) would otherwise share the cores
+/// with them and come a second later.
+async fn after_first_paint() {
+    if PAINTED.with(std::cell::Cell::get) {
+        return;
+    }
+    for _ in 0..2 {
+        let promise = js_sys::Promise::new(&mut |resolve, _| {
+            if let Some(w) = web_sys::window() {
+                let _ = w.request_animation_frame(&resolve);
+                let _ = w.set_timeout_with_callback_and_timeout_and_arguments_0(&resolve, 500);
+            }
+        });
+        let _ = wasm_bindgen_futures::JsFuture::from(promise).await;
+    }
+    PAINTED.with(|p| p.set(true));
+}
+
 /// Steps `task` in slices until it is done, yielding between slices.
 async fn run_slices(
     mut task: Box<dyn Task>,
     time: Rc<RefCell<PageTime>>,
     wake: Arc<dyn Fn() + Send + Sync>,
 ) {
+    after_first_paint().await;
     loop {
         let start = Instant::now();
         let mut news = false;
@@ -121,6 +149,14 @@ thread_local! {
     static POOL: RefCell<Option<Option<Dispatcher<WebTransport>>>> = const { RefCell::new(None) };
     /// What starting the pool had to say, where it could not start.
     static NOTICES: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Starts the page's pool now rather than at the first generation, so that
+/// the workers load their script and instantiate the module while the page
+/// draws its first frames (about a quarter of a second under a software
+/// rasteriser that the first landscape would otherwise wait).
+pub fn start_pool() {
+    let _ = with_pool(|_| ());
 }
 
 /// The page's Web Workers (one pool per page, on the page's thread).

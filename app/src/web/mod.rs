@@ -95,6 +95,7 @@ pub fn start() {
     else {
         return;
     };
+    executor::start_pool();
     wasm_bindgen_futures::spawn_local(async move {
         let started = eframe::WebRunner::new()
             .start(

@@ -2,7 +2,9 @@
 //! [`Transport`]: dedicated Web Workers (`web/worker.js`), as many as
 //! `navigator.hardwareConcurrency` (at least 2, at most 8), each running
 //! its own instance of this module (the page hands them its compiled
-//! `WebAssembly.Module`). Plain message passing, no shared memory, so the
+//! `WebAssembly.Module`). `web/index.html` starts them with the page, so
+//! that they have loaded their script by the time the module has compiled;
+//! the pool adopts them (and starts its own where there are none). Plain message passing, no shared memory, so the
 //! page works on any static host. What is handed out when, and what
 //! happens when a worker fails, is the session's
 //! [`Dispatcher`](dmpscope_session::workers::Dispatcher); this file only
@@ -68,9 +70,19 @@ impl WebTransport {
         let inbox = Rc::new(RefCell::new(Vec::new()));
         let module = wasm_bindgen::module();
         let mut slots = Vec::new();
+        let mut started = adopt_early_workers(&window, &mut notices);
+        while started.len() > n {
+            if let Some(extra) = started.pop() {
+                extra.terminate();
+            }
+        }
         for i in 0..n {
             // Worker numbers are positions among those that started.
-            match Self::spawn(slots.len(), &module, &inbox) {
+            let worker = match started.pop() {
+                Some(w) => Ok(w),
+                None => new_worker(),
+            };
+            match worker.and_then(|w| Self::connect(w, slots.len(), &module, &inbox)) {
                 Ok(slot) => slots.push(slot),
                 Err(e) => notices.push(format!(
                     "the browser could not start Web Worker {i} ({e:?})"
@@ -95,14 +107,13 @@ impl WebTransport {
         )
     }
 
-    fn spawn(
+    /// Listens to `worker` as worker `i` and hands it the module.
+    fn connect(
+        worker: web_sys::Worker,
         i: usize,
         module: &JsValue,
         inbox: &Rc<RefCell<Vec<FromWorker>>>,
     ) -> Result<Slot, JsValue> {
-        let options = web_sys::WorkerOptions::new();
-        options.set_type(web_sys::WorkerType::Module);
-        let worker = web_sys::Worker::new_with_options("./worker.js", &options)?;
         let to_inbox = inbox.clone();
         let on_message = Closure::<dyn FnMut(web_sys::MessageEvent)>::new(
             move |event: web_sys::MessageEvent| {
@@ -133,6 +144,46 @@ impl WebTransport {
             _on_error: on_error,
         })
     }
+}
+
+/// A new worker running `web/worker.js`.
+fn new_worker() -> Result<web_sys::Worker, JsValue> {
+    let options = web_sys::WorkerOptions::new();
+    options.set_type(web_sys::WorkerType::Module);
+    web_sys::Worker::new_with_options("./worker.js", &options)
+}
+
+/// The workers `index.html` started with the page
+/// (`window.dmpscope_workers`), taken once; one whose script failed to
+/// load is terminated and said in `notices`.
+fn adopt_early_workers(
+    window: &web_sys::Window,
+    notices: &mut Vec<String>,
+) -> Vec<web_sys::Worker> {
+    let key = JsValue::from_str("dmpscope_workers");
+    let early = js_sys::Reflect::get(window, &key).unwrap_or(JsValue::UNDEFINED);
+    let _ = js_sys::Reflect::set(window, &key, &JsValue::UNDEFINED);
+    let Ok(early) = early.dyn_into::<js_sys::Array>() else {
+        return Vec::new();
+    };
+    let mut workers = Vec::new();
+    for (i, value) in early.iter().enumerate() {
+        let Ok(worker) = value.dyn_into::<web_sys::Worker>() else {
+            continue;
+        };
+        match field(worker.as_ref(), "dmpscope_failed").as_string() {
+            Some(why) => {
+                worker.terminate();
+                notices.push(format!(
+                    "the browser could not start Web Worker {i} ({why})"
+                ));
+            }
+            None => workers.push(worker),
+        }
+    }
+    // `start` takes them from the end.
+    workers.reverse();
+    workers
 }
 
 /// A worker's message as the pool's [`FromWorker`].
