@@ -5,7 +5,8 @@
 #[cfg(not(target_arch = "wasm32"))]
 mod cli;
 
-/// In the browser wasm-bindgen calls `main` when the module loads.
+/// For wasm32 this binary only builds (the browser build's root is
+/// `web/entry`, whose `main` is the same call).
 #[cfg(target_arch = "wasm32")]
 fn main() {
     dmpscope::web::start();

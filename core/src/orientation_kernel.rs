@@ -432,7 +432,7 @@ fn integrate_chunk<const PEAK: bool, const V: usize, O: Observe<V>>(
                     *m = if a2[l].is_nan() || m.is_nan() {
                         f64::NAN
                     } else {
-                        m.max(a2[l])
+                        crate::kernel_dispatch::larger(*m, a2[l])
                     };
                 }
             }

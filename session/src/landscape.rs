@@ -32,9 +32,10 @@ pub struct Snapshot {
     pub done: usize,
     /// Points in all.
     pub total: usize,
-    /// Wall time from the start of the fill to this snapshot, on the
-    /// executor's clock (the browser tests' landscape time: from the first
-    /// tile handed out to the last one stored on the page).
+    /// Wall time from the start of the fill (its job created, once the
+    /// demos are loaded) to this snapshot, on the executor's clock: the
+    /// browser tests' landscape time (to the last tile stored on the page,
+    /// the model's transfer to the workers included).
     pub elapsed: Duration,
 }
 

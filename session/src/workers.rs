@@ -483,11 +483,12 @@ impl<T: Transport> Dispatcher<T> {
                 continue;
             }
             // A piece of this generation another worker holds, not answered
-            // and not copied yet.
+            // and not copied yet: the last it was handed, the least likely
+            // to be under way there (a worker computes its pieces in order).
             let unanswered = self
                 .in_flight
                 .iter()
-                .flatten()
+                .flat_map(|held| held.iter().rev())
                 .filter(|&&(g, p)| {
                     g == generation
                         && !self.answered.contains(&(g, p))

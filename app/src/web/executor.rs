@@ -1,8 +1,8 @@
 //! The browser's [`Executor`]: jobs in ~10 ms slices on the page's event
 //! loop (the page has no threads), the clock of `performance.now()`, and
 //! the pool of Web Workers ([`WebTransport`] under the session's
-//! [`Dispatcher`]), started at the first generation and kept for the page's
-//! life.
+//! [`Dispatcher`]), started with the app ([`start_pool`]) and kept for the
+//! page's life. Jobs start stepping after the page's first paint.
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -66,11 +66,12 @@ thread_local! {
 }
 
 /// Waits, once per page, until the page has painted its first frame: two
-/// animation frames from now (or half a second each in a hidden tab, which
-/// has none). The workers start with the page; jobs that would set them
-/// computing wait for the window to show first, as under a software
-/// rasteriser the first frame (300-700 ms) would otherwise share the cores
-/// with them and come a second later.
+/// animation frames from now (or a 500 ms timer each in a hidden tab, which
+/// has no animation frames and throttles timers to about a second). The
+/// workers start with the page; every job (the sample's loading, and so
+/// the landscape after it) waits for the window to show first, as under a
+/// software rasteriser the first frame (300-700 ms) would otherwise share
+/// the cores with the workers and come a second later.
 async fn after_first_paint() {
     if PAINTED.with(std::cell::Cell::get) {
         return;
@@ -144,8 +145,8 @@ impl Executor for WebExecutor {
 }
 
 thread_local! {
-    /// The page's pool: `None` before the first generation, `Some(None)`
-    /// where no worker could be started.
+    /// The page's pool: `None` before it is started ([`start_pool`], or
+    /// the first generation), `Some(None)` where no worker could be started.
     static POOL: RefCell<Option<Option<Dispatcher<WebTransport>>>> = const { RefCell::new(None) };
     /// What starting the pool had to say, where it could not start.
     static NOTICES: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };

@@ -175,7 +175,8 @@ fn adopt_early_workers(
             Some(why) => {
                 worker.terminate();
                 notices.push(format!(
-                    "the browser could not start Web Worker {i} ({why})"
+                    "the browser could not start the page's Web Worker {i} ({why}); \
+                     another is started in its place"
                 ));
             }
             None => workers.push(worker),
