@@ -412,8 +412,7 @@ impl eframe::App for DmpApp {
         }
         #[cfg(feature = "testing")]
         self.frame_watch.frame(
-            !self.session.landscape_complete()
-                && self.session.shown().is_some_and(|s| s.snapshot.total > 0),
+            self.session.landscape_running(),
             self.session.status().describe(),
             frame.info().cpu_usage,
         );

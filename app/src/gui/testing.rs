@@ -65,27 +65,33 @@ pub struct FrameWatch {
     log: Vec<[f64; 3]>,
     /// The last frame's own `ui` time, ms.
     last_ui_ms: f64,
+    /// Whether the landscape was computing at the last frame.
+    last_computing: bool,
 }
 
 impl FrameWatch {
     /// Records a frame; `computing` says whether the landscape has started
-    /// and is not complete, `status` what the session is doing.
+    /// and is not complete, `status` what the session is doing. An interval
+    /// counts as one while computing when the landscape was computing at
+    /// either of its frames (a frame that starts during the landscape and
+    /// ends after it is one the user waited for).
     pub fn frame(&mut self, computing: bool, status: String, cpu_s: Option<f32>) {
-        let complete = !computing;
+        let counts = computing || self.last_computing;
+        self.last_computing = computing;
         let now = Instant::now();
         self.ui_start = Some(now);
         let cpu_ms = f64::from(cpu_s.unwrap_or(0.0)) * 1e3;
-        if computing && self.log.len() < 40 {
+        if counts && self.log.len() < 40 {
             let gap = self
                 .last
                 .map_or(0.0, |l| now.duration_since(l).as_secs_f64() * 1e3);
             self.log.push([gap, cpu_ms, self.last_ui_ms]);
         }
-        if !complete && cpu_ms > self.cpu_ms_computing.0 {
+        if counts && cpu_ms > self.cpu_ms_computing.0 {
             self.cpu_ms_computing = (cpu_ms, self.status.clone());
         }
         if let Some(last) = self.last
-            && !complete
+            && counts
         {
             let ms = now.duration_since(last).as_secs_f64() * 1e3;
             if ms > self.longest_ms_computing {
