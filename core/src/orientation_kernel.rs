@@ -16,9 +16,9 @@
 //! The transcendental functions are polynomials where their arguments
 //! allow, so the lanes vectorise (`H` and `P` evaluated as their even and
 //! odd halves in `x^2`, two chains of half the length: 476 -> 460 ms for
-//! the planted8 d_rot landscape against one Horner chain): with `x = 1 - c` for a unit quaternion's
-//! scalar part `c` in [0, 1], `atan2(|v|, c) / |v| = H(x)` and
-//! `acos(c) = sqrt(2 x) P(x)`, `H` and `P` Chebyshev interpolants on
+//! the planted8 d_rot landscape against one Horner chain): with
+//! `x = 1 - c` for a unit quaternion's scalar part `c` in [0, 1],
+//! `atan2(|v|, c) / |v| = H(x)` and `acos(c) = sqrt(2 x) P(x)`, `H` and `P` Chebyshev interpolants on
 //! [0, 1] (relative errors 3.9e-10 for `P`, which only weighs the error
 //! angle, and 1.6e-12 for `H`, which drives the rollout: at degree 12,
 //! 5.7e-11, `alpha_peak` at K/M 900 left the golden 1e-9); `exp(u)` is its Taylor series in

@@ -140,9 +140,8 @@ impl Similarity {
             }
             let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
             for l in 0..L {
-                // max(var, 0) (NaN gives 0), as a compare and a select (see
-                // `kernel_dispatch::larger`).
-                let v = if var_sum[l] > 0.0 { var_sum[l] } else { 0.0 };
+                // max(var, 0), NaN giving 0.
+                let v = crate::kernel_dispatch::larger(0.0, var_sum[l]);
                 total[l] += w * v.sqrt();
             }
         }

@@ -4,8 +4,8 @@
 //! its own instance of this module (the page hands them its compiled
 //! `WebAssembly.Module`). `web/index.html` starts them with the page, so
 //! that they have loaded their script by the time the module has compiled;
-//! the pool adopts them (and starts its own where there are none). Plain message passing, no shared memory, so the
-//! page works on any static host. What is handed out when, and what
+//! the pool adopts them (and starts its own where there are none). Plain
+//! message passing, no shared memory, so the page works on any static host. What is handed out when, and what
 //! happens when a worker fails, is the session's
 //! [`Dispatcher`](dmpscope_session::workers::Dispatcher); this file only
 //! turns its messages into JavaScript objects and back.
