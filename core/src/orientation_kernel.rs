@@ -16,19 +16,19 @@
 //! The transcendental functions are polynomials where their arguments
 //! allow, so the lanes vectorise (`H` and `P` evaluated as their even and
 //! odd halves in `x^2`, two chains of half the length: 476 -> 460 ms for
-//! the planted8 d_rot landscape against one Horner chain): with
-//! `x = 1 - c` for a unit quaternion's scalar part `c` in [0, 1],
-//! `atan2(|v|, c) / |v| = H(x)` and `acos(c) = sqrt(2 x) P(x)`, `H` and `P` Chebyshev interpolants on
-//! [0, 1] (relative errors 3.9e-10 for `P`, which only weighs the error
-//! angle, and 1.6e-12 for `H`, which drives the rollout: at degree 12,
-//! 5.7e-11, `alpha_peak` at K/M 900 left the golden 1e-9); `exp(u)` is its Taylor series in
-//! `|u|^2`, short while `|u|^2 <= 1e-4` and longer while `|u|^2 <= 2.5e-3`
-//! (truncation below 3e-16). Where an argument leaves that range (a
-//! rotation to go of more than 180 degrees, `|w| dt / 2` over 0.05 rad, an
-//! angular step over 0.1 rad) the lane takes `atan2`, `sin` and `cos` from
-//! the `libm` crate. Plain multiplications and additions, no fused
-//! multiply-add, and the same `libm` natively and in the browser: the
-//! browser's build gives the same bits.
+//! the planted8 d_rot landscape against one Horner chain): with `x = 1 - c`
+//! for a unit quaternion's scalar part `c` in [0, 1], `atan2(|v|, c) / |v|
+//! = H(x)` and `acos(c) = sqrt(2 x) P(x)`, `H` and `P` Chebyshev
+//! interpolants on [0, 1] (relative errors 3.9e-10 for `P`, which only
+//! weighs the error angle, and 1.6e-12 for `H`, which drives the rollout:
+//! at degree 12, 5.7e-11, `alpha_peak` at K/M 900 left the golden 1e-9);
+//! `exp(u)` is its Taylor series in `|u|^2`, short while `|u|^2 <= 1e-4`
+//! and longer while `|u|^2 <= 2.5e-3` (truncation below 3e-16). Where an
+//! argument leaves that range (a rotation to go of more than 180 degrees,
+//! `|w| dt / 2` over 0.05 rad, an angular step over 0.1 rad) the lane takes
+//! `atan2`, `sin` and `cos` from the `libm` crate. Plain multiplications
+//! and additions, no fused multiply-add, and the same `libm` natively and
+//! in the browser: the browser's build gives the same bits.
 
 use crate::dmp::Projections;
 use crate::orientation::{OrientationRollout, PreparedOrientation};
