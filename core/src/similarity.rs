@@ -110,13 +110,46 @@ impl Similarity {
                 }
             }
         }
+        crate::kernel_dispatch::run(Lanes {
+            similarity: self,
+            dm,
+            km,
+            inv: &inv,
+        })
+    }
+}
+
+/// [`Similarity::evaluate_lanes`]'s integral over the grid, given each
+/// demo's `1 / sd` per axis and lane, as a call the dispatch compiles per
+/// instruction set (compiled for the baseline it spilled its lanes and
+/// took about as long as the regenerations' kernels).
+struct Lanes<'a, const L: usize> {
+    similarity: &'a Similarity,
+    dm: f64,
+    km: [f64; L],
+    /// `inv[axis * demos + demo][lane]`.
+    inv: &'a [[f64; L]],
+}
+
+impl<const L: usize> crate::kernel_dispatch::Kernel for Lanes<'_, L> {
+    type Output = [f64; L];
+
+    #[inline(always)]
+    fn call(self) -> [f64; L] {
+        let Self {
+            similarity,
+            dm,
+            km,
+            inv,
+        } = self;
+        let (n, nd) = (similarity.n, similarity.demos);
         let inv_nd = 1.0 / nd as f64;
         let inv_nd1 = 1.0 / (nd - 1) as f64;
         let mut total = [0.0; L];
         for k in 0..n {
             let mut var_sum = [0.0; L];
             for axis in 0..3 {
-                let row = &self.parts[(k * 3 + axis) * nd..(k * 3 + axis + 1) * nd];
+                let row = &similarity.parts[(k * 3 + axis) * nd..(k * 3 + axis + 1) * nd];
                 let inv_row = &inv[axis * nd..(axis + 1) * nd];
                 let [a0, b0, c0] = row[0];
                 let p0 = a0 + dm * b0;
