@@ -75,7 +75,7 @@ self.onmessage = async (event) => {
       case "init":
         break;
       case "model":
-        dmpscope.dmpscope_worker_model(m.model, m.json);
+        dmpscope.dmpscope_worker_model(m.model, m.bytes);
         break;
       case "grid":
         dmpscope.dmpscope_worker_grid(m.generation, m.model, m.grid);

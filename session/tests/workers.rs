@@ -1,8 +1,10 @@
 //! The hand-out code of the session's worker pool, run natively through a
 //! fake transport whose workers compute with the session's own
 //! [`WorkerState`] (as the browser's Web Workers do) but answer out of
-//! order, lose an answer and fail: the landscape, the diagnostics and RL
-//! training still give exactly the numbers of the inline session.
+//! order, lose an answer and fail, and build their models from the bytes
+//! the browser's page sends (`ModelInputs::to_bytes`): the landscape, the
+//! diagnostics and RL training still give exactly the numbers of the inline
+//! session.
 
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -10,7 +12,7 @@ use std::time::{Duration, Instant};
 use dmpscope_core::Model;
 use dmpscope_core::rl::EnvOptions;
 use dmpscope_session::executor::InlineExecutor;
-use dmpscope_session::worker_side::{RunSlice, WorkerState};
+use dmpscope_session::worker_side::{ModelInputs, RunSlice, WorkerState};
 use dmpscope_session::workers::{Dispatcher, FromWorker, Reply, Setup, ToWorker, Transport};
 use dmpscope_session::{Command, RlRequest, RlRun, Runner, Session, Settings, Source};
 
@@ -142,7 +144,11 @@ impl Transport for Fake {
     }
     fn send(&mut self, worker: usize, message: ToWorker<'_>) -> Result<(), String> {
         let held = match message {
-            ToWorker::Model { id, model } => Held::Model(id, model.clone()),
+            // Through the bytes the browser's page sends its workers.
+            ToWorker::Model { id, model } => {
+                let bytes = ModelInputs::of(model).to_bytes()?;
+                Held::Model(id, Arc::new(ModelInputs::from_bytes(&bytes)?.build()?))
+            }
             ToWorker::Begin {
                 generation,
                 model,

@@ -33,8 +33,9 @@ struct Slot {
 pub struct WebTransport {
     slots: Vec<Slot>,
     inbox: Rc<RefCell<Vec<FromWorker>>>,
-    /// The last model sent, as JSON, by id (made once for every worker).
-    model_json: Option<(u64, JsValue)>,
+    /// The last model sent, as bytes ([`ModelInputs::to_bytes`]), by id
+    /// (made once for every worker).
+    model_bytes: Option<(u64, js_sys::Uint8Array)>,
 }
 
 /// A message: a plain object of these fields.
@@ -101,7 +102,7 @@ impl WebTransport {
             Some(Self {
                 slots,
                 inbox,
-                model_json: None,
+                model_bytes: None,
             }),
             notices,
         )
@@ -244,21 +245,24 @@ impl Transport for WebTransport {
 
     fn send(&mut self, worker: usize, msg: ToWorker<'_>) -> Result<(), String> {
         if let ToWorker::Model { id, model } = &msg
-            && self.model_json.as_ref().is_none_or(|(m, _)| m != id)
+            && self.model_bytes.as_ref().is_none_or(|(m, _)| m != id)
         {
-            self.model_json = Some((*id, json(&ModelInputs::of(model))?));
+            let bytes = ModelInputs::of(model).to_bytes()?;
+            self.model_bytes = Some((*id, js_sys::Uint8Array::from(bytes.as_slice())));
         }
         let slot = self.slots.get(worker).ok_or("no such worker")?;
         let posted = match msg {
             ToWorker::Model { id, .. } => {
+                // Copied to each worker (structured clone), not transferred:
+                // every worker gets the same bytes.
                 let inputs = self
-                    .model_json
+                    .model_bytes
                     .as_ref()
-                    .map_or(JsValue::NULL, |(_, j)| j.clone());
+                    .map_or(JsValue::NULL, |(_, b)| b.clone().into());
                 slot.worker.post_message(&message(&[
                     ("kind", "model".into()),
                     ("model", (id as f64).into()),
-                    ("json", inputs),
+                    ("bytes", inputs),
                 ]))
             }
             ToWorker::Begin {

@@ -33,10 +33,10 @@ fn begin(generation: f64, model: f64, setup: Setup) -> Result<(), JsValue> {
         .map_err(js_error)
 }
 
-/// Builds model `id` from its inputs (JSON of [`ModelInputs`]).
+/// Builds model `id` from its inputs ([`ModelInputs::to_bytes`]).
 #[wasm_bindgen]
-pub fn dmpscope_worker_model(id: f64, json: &str) -> Result<(), JsValue> {
-    let inputs: ModelInputs = parse("the model's inputs", json)?;
+pub fn dmpscope_worker_model(id: f64, bytes: &[u8]) -> Result<(), JsValue> {
+    let inputs = ModelInputs::from_bytes(bytes).map_err(js_error)?;
     let model = inputs.build().map_err(js_error)?;
     HELD.with(|h| h.borrow_mut().keep_model(id as u64, Arc::new(model)));
     Ok(())
