@@ -62,6 +62,7 @@ pub mod segment;
 pub mod similarity;
 pub mod skill;
 pub mod skill_error;
+mod skill_kernel;
 pub mod synth;
 pub mod table_text;
 pub mod text;

@@ -21,6 +21,7 @@ use crate::prepare::PreparedDemo;
 use crate::quantity::{self, PointValues, Quantity};
 use crate::similarity::{Similarity, trapezoid};
 use crate::skill_error;
+use crate::skill_kernel::SkillKernel;
 
 /// Lanes of the batched kernels used by landscapes (gain pairs sharing D/M).
 pub const LANES: usize = 16;
@@ -36,7 +37,7 @@ pub struct Model {
     kernels: Vec<DemoKernel>,
     /// The skill run towards each demo (method.md section 11), or why the
     /// skill mode gives none.
-    skill: std::result::Result<Vec<DemoKernel>, String>,
+    skill: std::result::Result<SkillKernel, String>,
     /// Each demo's orientation projections (method.md section 12), `None`
     /// for a demo without orientation.
     orientation: Vec<Option<Projections>>,
@@ -361,10 +362,7 @@ impl Model {
             a_peak.push(ai[0]);
         }
         let e: Vec<f64> = match &self.skill {
-            Ok(skill) => skill
-                .iter()
-                .map(|k| integrate::<1, false>(k, dm, [km]).0[0])
-                .collect(),
+            Ok(skill) => skill.integrate(dm, [km]).iter().map(|e| e[0]).collect(),
             Err(_) => vec![f64::NAN; self.demos.len()],
         };
         let d_sum = d.iter().sum();
@@ -410,8 +408,7 @@ impl Model {
         let mut e_sum = [0.0; L];
         match &self.skill {
             Ok(skill) => {
-                for kernel in skill {
-                    let e = integrate::<L, false>(kernel, dm, km).0;
+                for e in skill.integrate(dm, km) {
                     for l in 0..L {
                         e_sum[l] += e[l];
                     }

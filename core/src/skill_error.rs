@@ -5,11 +5,12 @@
 //! The skill's forcing term is `mean_j Q_j f_j` and each demo's fitted
 //! `f_j = F0_j + D/M F1_j + K/M F2_j` is linear in the gains, as are the
 //! maps `Q_j` (from `d_j` to `d_bar`) and `P_i` (from `d_bar` back to
-//! `d_i`), which do not depend on them. So the forcing term that the skill
-//! runs with towards demo i is `G0_i + D/M G1_i + K/M G2_i` with
-//! `G_c,i = P_i mean_j Q_j F_c,j`: one kernel per demo of the same shape as
-//! the regeneration's, built once per model. A gain pair then costs one
-//! more integration per demo, and E comes out of the landscape's kernel.
+//! `d_i`), which do not depend on them. So the skill's forcing term in the
+//! mean frame is `G0 + D/M G1 + K/M G2` with `G_c = mean_j Q_j F_c,j`,
+//! built once per model, and its run towards demo i is `P_i` times its run
+//! in the mean frame (plus the start `P_i` does not give; see
+//! [`crate::skill_kernel`]): a gain pair costs one more integration,
+//! whatever the number of demos.
 
 use serde::{Deserialize, Serialize};
 
@@ -18,6 +19,7 @@ use crate::generalise::{Mapping, Scaling};
 use crate::geom::Vec3;
 use crate::position_kernel::DemoKernel;
 use crate::prepare::PreparedDemo;
+use crate::skill_kernel::SkillKernel;
 
 /// How the one skill follows each demo's start and goal (method.md
 /// section 11).
@@ -80,13 +82,13 @@ impl std::str::FromStr for SkillMode {
 /// The smallest mean displacement a frame skill accepts, metres.
 pub const MIN_FRAME_DISPLACEMENT: f64 = 1e-9;
 
-/// The kernels of the skill run towards each demo, or why there are none
+/// The kernel of the skill run towards each demo, or why there is none
 /// (a frame skill without a direction).
 pub(crate) fn kernels(
     demos: &[PreparedDemo],
     projections: &[Projections],
     mode: SkillMode,
-) -> Result<Vec<DemoKernel>, String> {
+) -> Result<SkillKernel, String> {
     let own: Vec<Vec3> = demos.iter().map(|d| d.goal - d.y_raw[0]).collect();
     let nf = demos.len() as f64;
     let mut mean_d = Vec3::zeros();
@@ -140,26 +142,48 @@ pub(crate) fn kernels(
         }
     }
     let v0 = v0.map(|v| v / nf);
-    demos
+    let back: Vec<Mapping> = demos
         .iter()
         .zip(&own)
-        .map(|(demo, &di)| {
-            let back = map(mean_d, di, &demo.name)?;
-            let g = demo.goal;
-            let steps = parts
+        .map(|(demo, &di)| map(mean_d, di, &demo.name))
+        .collect::<Result<_, _>>()?;
+    // Frame-independent maps are s R: each demo's error is s |z - T|.
+    let similar: Option<Vec<f64>> = (mode == SkillMode::Frame).then(|| {
+        back.iter()
+            .zip(&own)
+            .map(|(m, &di)| match m {
+                Mapping::Diagonal(d) => d[0],
+                Mapping::Matrix(_) => crate::mapping::norm(di) / crate::mapping::norm(mean_d),
+            })
+            .collect()
+    });
+    let targets: Vec<Vec<[f64; 3]>> = demos
+        .iter()
+        .map(|d| {
+            d.y_raw
                 .iter()
-                .zip(&demo.y_raw)
-                .map(|(p, yr)| {
-                    let [g0, g1, g2] = p.map(|v| back.apply(v));
-                    std::array::from_fn(|ax| [g0[ax], g1[ax], g2[ax], yr[ax] - g[ax]])
-                })
-                .collect();
-            let u0 = back.apply(v0).map(|v| v * dt);
-            Ok(DemoKernel::from_parts(
-                steps,
-                std::array::from_fn(|ax| demo.y_raw[0][ax] - g[ax]),
-                u0.into(),
-            ))
+                .map(|yr| std::array::from_fn(|ax| yr[ax] - d.goal[ax]))
+                .collect()
         })
-        .collect()
+        .collect();
+    let starts: Vec<[f64; 3]> = demos
+        .iter()
+        .map(|d| std::array::from_fn(|ax| d.y_raw[0][ax] - d.goal[ax]))
+        .collect();
+    let steps = parts
+        .iter()
+        .map(|p| std::array::from_fn(|ax| [p[0][ax], p[1][ax], p[2][ax], 0.0]))
+        .collect();
+    let mean = DemoKernel::from_parts(
+        steps,
+        std::array::from_fn(|ax| -mean_d[ax]),
+        std::array::from_fn(|ax| v0[ax] * dt),
+    );
+    Ok(SkillKernel::new(
+        mean,
+        &back,
+        &targets,
+        &starts,
+        similar.as_deref(),
+    ))
 }

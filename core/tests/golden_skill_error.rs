@@ -125,10 +125,12 @@ fn skill_error_and_region_match_the_reference_on_the_bundled_samples() {
 
 #[test]
 fn with_one_demo_e_equals_d_to_the_bit() {
-    let m = model(&raw_demos()[..1], SkillMode::Frame);
-    for (dm, km) in [(10.73, 20.71), (25.0, 156.25), (0.3, 900.0)] {
-        let e = m.evaluate(dm, km);
-        assert_eq!(e.e, e.d);
-        assert_eq!(e.e_sum, e.d_sum);
+    for mode in SkillMode::ALL {
+        let m = model(&raw_demos()[..1], mode);
+        for (dm, km) in [(10.73, 20.71), (25.0, 156.25), (0.3, 900.0)] {
+            let e = m.evaluate(dm, km);
+            assert_eq!(e.e, e.d, "{}", mode.name());
+            assert_eq!(e.e_sum, e.d_sum, "{}", mode.name());
+        }
     }
 }

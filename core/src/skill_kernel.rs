@@ -1,0 +1,428 @@
+//! The skill error's integration (method.md section 11): one run of the
+//! skill per gain pair, in the frame of the demos' mean displacement, and
+//! every demo's E read off it.
+//!
+//! The skill run towards demo i integrates the forcing term `P_i G` from
+//! `z0_i` with `u0_i = P_i u0`, where `G`, `u0` are the skill's in the
+//! mean frame and `P_i` the linear map from the mean displacement to demo
+//! i's. The DMP is linear with scalar gains, which commute with `P_i`, so
+//! that run is `P_i z(t) + h(t) r_i`: `z` the skill's run in the mean frame
+//! from `z0 = -mean_d`, `h` the scalar run from 1 at rest without forcing,
+//! and `r_i = z0_i - P_i z0` the part of the start `P_i` does not give
+//! (zero in exact arithmetic for frame-independent skills and for per-axis
+//! factors; the demos' own offsets without scaling). One integration per
+//! gain pair then serves every demo, instead of one per demo: the same E
+//! to rounding (the golden tests check it), and a lone demo's E is its d
+//! to the bit as before.
+//!
+//! A frame-independent `P_i` is `s_i R_i`, so demo i's error is
+//! `s_i |z - T_i|` with `T_i = R_i^T (y_i - g_i) / s_i`, computed once.
+
+use crate::mapping::Mapping;
+use crate::position_kernel::DemoKernel;
+
+/// How each demo reads its skill run off the mean frame's.
+#[derive(Clone, Debug)]
+enum Views {
+    /// Frame-independent maps `s_i R_i`: demo i's error is
+    /// `s_i |z - T_i|`.
+    Similar {
+        /// `s_i` per demo.
+        scale: Vec<f64>,
+        /// `T_i` at `[k * demos + i]`.
+        targets: Vec<[f64; 3]>,
+    },
+    /// Per-axis maps (per-axis factors, or none): demo i's error is
+    /// `|a_i z + h r_i - (y_i - g_i)|`.
+    Axes {
+        /// `a_i` per demo.
+        factors: Vec<[f64; 3]>,
+        /// `r_i` per demo, or `None` where every one is exactly 0 (then
+        /// `h` is not integrated).
+        offsets: Option<Vec<[f64; 3]>>,
+        /// `y_i - g_i` at `[k * demos + i]`.
+        targets: Vec<[f64; 3]>,
+    },
+}
+
+/// The skill in the mean frame and how each demo reads it.
+#[derive(Clone, Debug)]
+pub(crate) struct SkillKernel {
+    /// The skill's run in the mean frame (its targets unused).
+    mean: DemoKernel,
+    views: Views,
+    demos: usize,
+}
+
+impl SkillKernel {
+    /// The kernel of the skill `mean` (forcing parts times `dt^2`, `z0`
+    /// and `u0` in the mean frame), mapped to each demo by `maps` (the map
+    /// of the mean displacement to the demo's); `targets[i][k]` is
+    /// `y_i - g_i` on the grid, `starts[i]` is `z0_i`. `similar` says the
+    /// maps are frame-independent (`scales[i]` their `s_i`).
+    pub(crate) fn new(
+        mean: DemoKernel,
+        maps: &[Mapping],
+        targets: &[Vec<[f64; 3]>],
+        starts: &[[f64; 3]],
+        similar: Option<&[f64]>,
+    ) -> Self {
+        let demos = maps.len();
+        let n = mean.steps.len();
+        let views = match similar {
+            Some(scales) => {
+                let mut flat = Vec::with_capacity(n * demos);
+                for k in 0..n {
+                    for (map, (target, &s)) in maps.iter().zip(targets.iter().zip(scales)) {
+                        flat.push(inverse_similar(map, s, target[k]));
+                    }
+                }
+                Views::Similar {
+                    scale: scales.to_vec(),
+                    targets: flat,
+                }
+            }
+            None => {
+                let factors: Vec<[f64; 3]> = maps.iter().map(diagonal).collect();
+                let z0 = mean.z0;
+                let offsets: Vec<[f64; 3]> = factors
+                    .iter()
+                    .zip(starts)
+                    .map(|(a, s)| std::array::from_fn(|ax| s[ax] - a[ax] * z0[ax]))
+                    .collect();
+                let any = offsets.iter().flatten().any(|&r| r != 0.0);
+                let mut flat = Vec::with_capacity(n * demos);
+                for k in 0..n {
+                    flat.extend(targets.iter().map(|t| t[k]));
+                }
+                Views::Axes {
+                    factors,
+                    offsets: any.then_some(offsets),
+                    targets: flat,
+                }
+            }
+        };
+        Self { mean, views, demos }
+    }
+
+    /// Each demo's E at `(dm, km[l])`, at `[demo][lane]`.
+    pub(crate) fn integrate<const L: usize>(&self, dm: f64, km: [f64; L]) -> Vec<[f64; L]> {
+        let mut sums = vec![[0.0; L]; self.demos];
+        match &self.views {
+            Views::Similar { scale, targets } => {
+                crate::kernel_dispatch::run(Run {
+                    mean: &self.mean,
+                    dm,
+                    km,
+                    read: Similar { targets },
+                    sums: &mut sums,
+                });
+                for (e, s) in sums.iter_mut().zip(scale) {
+                    *e = e.map(|v| v * s);
+                }
+            }
+            Views::Axes {
+                factors,
+                offsets: None,
+                targets,
+            } => crate::kernel_dispatch::run(Run {
+                mean: &self.mean,
+                dm,
+                km,
+                read: Axes::<false> {
+                    factors,
+                    offsets: &[],
+                    targets,
+                },
+                sums: &mut sums,
+            }),
+            Views::Axes {
+                factors,
+                offsets: Some(offsets),
+                targets,
+            } => crate::kernel_dispatch::run(Run {
+                mean: &self.mean,
+                dm,
+                km,
+                read: Axes::<true> {
+                    factors,
+                    offsets,
+                    targets,
+                },
+                sums: &mut sums,
+            }),
+        }
+        sums
+    }
+}
+
+/// `T = P^{-1} target` for a frame-independent map `P = s R`.
+fn inverse_similar(map: &Mapping, s: f64, target: [f64; 3]) -> [f64; 3] {
+    match map {
+        Mapping::Diagonal(d) => std::array::from_fn(|ax| target[ax] / d[ax]),
+        // P^T = s R^T, so P^{-1} = P^T / s^2.
+        Mapping::Matrix(m) => {
+            let s2 = s * s;
+            std::array::from_fn(|c| {
+                (m[0][c] * target[0] + m[1][c] * target[1] + m[2][c] * target[2]) / s2
+            })
+        }
+    }
+}
+
+/// The factors of a per-axis map (every map but the frame-independent
+/// skill's is diagonal).
+fn diagonal(map: &Mapping) -> [f64; 3] {
+    match map {
+        Mapping::Diagonal(d) => *d,
+        Mapping::Matrix(m) => std::array::from_fn(|ax| m[ax][ax]),
+    }
+}
+
+/// How a demo's error vector at one grid point comes from the mean run.
+trait Read<const L: usize> {
+    /// Adds `w |e_i|` of every demo `i` at grid point `k` to `sums[i]`,
+    /// given the mean run `z` and the homogeneous run `h` there.
+    fn add(&self, k: usize, z: &[[f64; L]; 3], h: &[f64; L], w: f64, sums: &mut [[f64; L]]);
+
+    /// Whether the homogeneous run `h` is needed.
+    const HOMOGENEOUS: bool;
+}
+
+/// [`Views::Similar`]'s reading.
+struct Similar<'a> {
+    targets: &'a [[f64; 3]],
+}
+
+impl<const L: usize> Read<L> for Similar<'_> {
+    const HOMOGENEOUS: bool = false;
+
+    #[inline(always)]
+    fn add(&self, k: usize, z: &[[f64; L]; 3], _h: &[f64; L], w: f64, sums: &mut [[f64; L]]) {
+        let row = &self.targets[k * sums.len()..(k + 1) * sums.len()];
+        for (t, sum) in row.iter().zip(sums) {
+            for l in 0..L {
+                let e0 = z[0][l] - t[0];
+                let e1 = z[1][l] - t[1];
+                let e2 = z[2][l] - t[2];
+                sum[l] += w * (e0 * e0 + e1 * e1 + e2 * e2).sqrt();
+            }
+        }
+    }
+}
+
+/// [`Views::Axes`]'s reading, with `h r_i` when `H`.
+struct Axes<'a, const H: bool> {
+    factors: &'a [[f64; 3]],
+    offsets: &'a [[f64; 3]],
+    targets: &'a [[f64; 3]],
+}
+
+impl<const L: usize, const H: bool> Read<L> for Axes<'_, H> {
+    const HOMOGENEOUS: bool = H;
+
+    #[inline(always)]
+    fn add(&self, k: usize, z: &[[f64; L]; 3], h: &[f64; L], w: f64, sums: &mut [[f64; L]]) {
+        let nd = sums.len();
+        let row = &self.targets[k * nd..(k + 1) * nd];
+        for (i, (t, sum)) in row.iter().zip(sums).enumerate() {
+            let a = self.factors[i];
+            let r = if H { self.offsets[i] } else { [0.0; 3] };
+            for l in 0..L {
+                let e: [f64; 3] = std::array::from_fn(|ax| {
+                    let y = a[ax] * z[ax][l];
+                    let y = if H { y + h[l] * r[ax] } else { y };
+                    y - t[ax]
+                });
+                sum[l] += w * (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt();
+            }
+        }
+    }
+}
+
+/// One skill run and its readings, as a call the dispatch compiles per
+/// instruction set.
+struct Run<'a, R, const L: usize> {
+    mean: &'a DemoKernel,
+    dm: f64,
+    km: [f64; L],
+    read: R,
+    /// `sum_k w_k |e_i(k)|` per demo and lane; times `dt` on return.
+    sums: &'a mut [[f64; L]],
+}
+
+impl<R: Read<L>, const L: usize> crate::kernel_dispatch::Kernel for Run<'_, R, L> {
+    type Output = ();
+
+    #[inline(always)]
+    fn call(self) {
+        let Self {
+            mean,
+            dm,
+            km,
+            read,
+            sums,
+        } = self;
+        let n = mean.steps.len();
+        let dt = 1.0 / (n - 1) as f64;
+        let dt2 = dt * dt;
+        let ddt = dm * dt;
+        let kdt2 = km.map(|k| k * dt2);
+        let mut z: [[f64; L]; 3] = std::array::from_fn(|ax| [mean.z0[ax]; L]);
+        let mut u: [[f64; L]; 3] = std::array::from_fn(|ax| [mean.u0[ax]; L]);
+        let mut h = [1.0; L];
+        let mut uh = [0.0; L];
+        for (k, step) in mean.steps.iter().enumerate() {
+            let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
+            read.add(k, &z, &h, w, sums);
+            // The position kernel's step, in the same order.
+            for ax in 0..3 {
+                let [f0, f1, f2, _] = step[ax];
+                let fd = f0 + dm * f1;
+                for l in 0..L {
+                    let du = fd + km[l] * f2 - kdt2[l] * z[ax][l] - ddt * u[ax][l];
+                    u[ax][l] += du;
+                    z[ax][l] += u[ax][l];
+                }
+            }
+            if R::HOMOGENEOUS {
+                for l in 0..L {
+                    let du = -(kdt2[l] * h[l]) - ddt * uh[l];
+                    uh[l] += du;
+                    h[l] += uh[l];
+                }
+            }
+        }
+        for sum in sums.iter_mut() {
+            *sum = sum.map(|e| e * dt);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generalise::Scaling;
+    use crate::geom::Vec3;
+    use crate::position_kernel::integrate;
+
+    const N: usize = 201;
+
+    /// A smooth made-up curve per axis, `amp` in size.
+    fn curve(seed: f64, amp: f64) -> Vec<[f64; 3]> {
+        (0..N)
+            .map(|k| {
+                let t = k as f64 / (N - 1) as f64;
+                std::array::from_fn(|ax| amp * (seed + 1.7 * ax as f64 + 3.1 * t).sin())
+            })
+            .collect()
+    }
+
+    /// E of each demo by running the skill towards it (the forcing term
+    /// `P_i G`, start `z0_i`, `u0_i = P_i u0`), as E was computed before
+    /// this kernel: one integration per demo.
+    fn direct<const L: usize>(
+        parts: &[[[f64; 3]; 3]],
+        u0: [f64; 3],
+        maps: &[Mapping],
+        targets: &[Vec<[f64; 3]>],
+        starts: &[[f64; 3]],
+        dm: f64,
+        km: [f64; L],
+    ) -> Vec<[f64; L]> {
+        let apply = |m: &Mapping, v: [f64; 3]| -> [f64; 3] { m.apply(Vec3::from(v)).into() };
+        maps.iter()
+            .zip(targets.iter().zip(starts))
+            .map(|(m, (target, &z0))| {
+                let steps = parts
+                    .iter()
+                    .zip(target)
+                    .map(|(p, t)| {
+                        let g = p.map(|c| apply(m, c));
+                        std::array::from_fn(|ax| [g[0][ax], g[1][ax], g[2][ax], t[ax]])
+                    })
+                    .collect();
+                let kernel = DemoKernel::from_parts(steps, z0, apply(m, u0));
+                integrate::<L, false>(&kernel, dm, km).0
+            })
+            .collect()
+    }
+
+    /// The skill's run in the mean frame read by each demo gives the E of
+    /// a run per demo, for frame-independent maps (rotations), per-axis
+    /// factors with an axis whose mean displacement is 0 (the start then
+    /// needs the homogeneous run) and no map.
+    #[test]
+    fn one_mean_run_gives_every_demos_e() {
+        let dt2 = 1.0 / ((N - 1) * (N - 1)) as f64;
+        let own: Vec<Vec3> = [[0.3, 0.1, -0.2], [-0.3, 0.25, 0.1], [0.1, 0.2, 0.05]]
+            .map(Vec3::from)
+            .to_vec();
+        let starts: Vec<[f64; 3]> = own.iter().map(|d| d.map(|v| -v).into()).collect();
+        let targets: Vec<Vec<[f64; 3]>> = (0..3).map(|i| curve(i as f64, 0.2)).collect();
+        let p: [Vec<[f64; 3]>; 3] = [curve(0.5, 20.0), curve(1.5, 1.0), curve(2.5, 3.0)];
+        let parts: Vec<[[f64; 3]; 3]> = (0..N)
+            .map(|k| std::array::from_fn(|c| p[c][k].map(|v| v * dt2)))
+            .collect();
+        let u0 = [0.01, -0.02, 0.005];
+        let (dm, km) = (12.0, [25.0, 160.0, 400.0, 1200.0]);
+        for mode in ["frame", "per-axis, x mean 0", "none"] {
+            let mut own = own.clone();
+            if mode != "frame" {
+                // x: +0.3, -0.3 and 0: a mean of exactly 0.
+                own[2][0] = 0.0;
+            }
+            let mean_d = Vec3::from_fn(|a, _| own.iter().map(|d| d[a]).sum::<f64>() / 3.0);
+            let maps: Vec<Mapping> = own
+                .iter()
+                .map(|&d| match mode {
+                    "frame" => Mapping::between(mean_d, d, Scaling::Frame).expect("map"),
+                    "none" => Mapping::IDENTITY,
+                    _ => Mapping::between(mean_d, d, Scaling::Paper).expect("map"),
+                })
+                .collect();
+            let scales: Vec<f64> = own
+                .iter()
+                .map(|&d| crate::mapping::norm(d) / crate::mapping::norm(mean_d))
+                .collect();
+            let steps = parts
+                .iter()
+                .map(|p| std::array::from_fn(|ax| [p[0][ax], p[1][ax], p[2][ax], 0.0]))
+                .collect();
+            let z0 = mean_d.map(|v| -v).into();
+            let mean = DemoKernel::from_parts(steps, z0, u0);
+            let similar = (mode == "frame").then_some(scales.as_slice());
+            let kernel = SkillKernel::new(mean, &maps, &targets, &starts, similar);
+            if mode != "frame" {
+                assert!(
+                    matches!(
+                        &kernel.views,
+                        Views::Axes {
+                            offsets: Some(_),
+                            ..
+                        }
+                    ),
+                    "{mode}: the starts need the homogeneous run"
+                );
+            }
+            let ours = kernel.integrate(dm, km);
+            let want = direct(&parts, u0, &maps, &targets, &starts, dm, km);
+            for (i, (a, b)) in ours.iter().zip(&want).enumerate() {
+                for l in 0..4 {
+                    let rel = (a[l] - b[l]).abs() / b[l];
+                    assert!(
+                        rel < 1e-12,
+                        "{mode}, demo {i}, lane {l}: {} vs {}",
+                        a[l],
+                        b[l]
+                    );
+                }
+            }
+            // A lone pair gives the bits of its lane in a batch.
+            let lone = kernel.integrate(dm, [km[2]]);
+            for (a, b) in lone.iter().zip(&ours) {
+                assert_eq!(a[0], b[2]);
+            }
+        }
+    }
+}
