@@ -398,23 +398,29 @@ impl Model {
     pub fn evaluate_lanes<const L: usize>(&self, dm: f64, km: [f64; L]) -> [PointValues; L] {
         let mut d_sum = [0.0; L];
         let mut peak = [0.0f64; L];
-        for kernel in &self.kernels {
-            let (d, a) = integrate::<L, true>(kernel, dm, km);
+        let mut e_sum = [0.0; L];
+        let each: Vec<[[f64; L]; 3]> = match &self.skill {
+            // E read off the skill's run inside each regeneration.
+            Ok(skill) => skill.regenerate_lanes(&self.kernels, dm, km),
+            Err(_) => {
+                e_sum = [f64::NAN; L];
+                let nan = [f64::NAN; L];
+                let each = self.kernels.iter().map(|kernel| {
+                    let (d, a) = integrate::<L, true>(kernel, dm, km);
+                    [d, a, nan]
+                });
+                each.collect()
+            }
+        };
+        let with_e = self.skill.is_ok();
+        for [d, a, e] in each {
             for l in 0..L {
                 d_sum[l] += d[l];
                 peak[l] = crate::kernel_dispatch::larger(peak[l], a[l]);
-            }
-        }
-        let mut e_sum = [0.0; L];
-        match &self.skill {
-            Ok(skill) => {
-                for e in skill.integrate(dm, km) {
-                    for l in 0..L {
-                        e_sum[l] += e[l];
-                    }
+                if with_e {
+                    e_sum[l] += e[l];
                 }
             }
-            Err(_) => e_sum = [f64::NAN; L],
         }
         let s = self.similarity.evaluate_lanes(dm, km);
         let d_rot_sum = self.d_rot_map_lanes(dm, km);

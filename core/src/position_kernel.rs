@@ -59,6 +59,18 @@ impl DemoKernel {
     }
 }
 
+/// Something computed at each grid point alongside an integration (the
+/// skill error's reading of the skill's run, [`crate::skill_kernel`]).
+pub(crate) trait StepRead<const L: usize> {
+    /// Called at grid point `k` (weight `w` of the trapezoid rule).
+    fn step(&mut self, k: usize, w: f64);
+}
+
+impl<const L: usize> StepRead<L> for () {
+    #[inline(always)]
+    fn step(&mut self, _k: usize, _w: f64) {}
+}
+
 /// Integrates a kernel at `(dm, km[l])` for each lane (method.md section
 /// 4, in the kernel's scaled variables) and returns `d` (or `e`) and, when
 /// `PEAK`, `a_peak` per lane.
@@ -67,32 +79,51 @@ pub(crate) fn integrate<const L: usize, const PEAK: bool>(
     dm: f64,
     km: [f64; L],
 ) -> ([f64; L], [f64; L]) {
-    crate::kernel_dispatch::run(Lanes::<L, PEAK> { kernel, dm, km })
+    integrate_reading::<L, PEAK, ()>(kernel, dm, km, &mut ())
 }
 
-/// [`integrate`]'s arguments, as a call the dispatch compiles per
+/// [`integrate`], with `read` stepped at every grid point.
+pub(crate) fn integrate_reading<const L: usize, const PEAK: bool, R: StepRead<L>>(
+    kernel: &DemoKernel,
+    dm: f64,
+    km: [f64; L],
+    read: &mut R,
+) -> ([f64; L], [f64; L]) {
+    crate::kernel_dispatch::run(Lanes::<L, PEAK, R> {
+        kernel,
+        dm,
+        km,
+        read,
+    })
+}
+
+/// [`integrate_reading`]'s arguments, as a call the dispatch compiles per
 /// instruction set.
-struct Lanes<'a, const L: usize, const PEAK: bool> {
+struct Lanes<'a, const L: usize, const PEAK: bool, R> {
     kernel: &'a DemoKernel,
     dm: f64,
     km: [f64; L],
+    read: &'a mut R,
 }
 
-impl<const L: usize, const PEAK: bool> crate::kernel_dispatch::Kernel for Lanes<'_, L, PEAK> {
+impl<const L: usize, const PEAK: bool, R: StepRead<L>> crate::kernel_dispatch::Kernel
+    for Lanes<'_, L, PEAK, R>
+{
     type Output = ([f64; L], [f64; L]);
 
     #[inline(always)]
     fn call(self) -> Self::Output {
-        integrate_lanes::<L, PEAK>(self.kernel, self.dm, self.km)
+        integrate_lanes::<L, PEAK, R>(self.kernel, self.dm, self.km, self.read)
     }
 }
 
 /// [`integrate`] on the instruction set it is inlined into.
 #[inline(always)]
-fn integrate_lanes<const L: usize, const PEAK: bool>(
+fn integrate_lanes<const L: usize, const PEAK: bool, R: StepRead<L>>(
     kernel: &DemoKernel,
     dm: f64,
     km: [f64; L],
+    read: &mut R,
 ) -> ([f64; L], [f64; L]) {
     let n = kernel.steps.len();
     let dt = 1.0 / (n - 1) as f64;
@@ -122,6 +153,7 @@ fn integrate_lanes<const L: usize, const PEAK: bool>(
             }
         }
         let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
+        read.step(k, w);
         for l in 0..L {
             err_sum[l] += w * e2[l].sqrt();
             if PEAK {

@@ -19,7 +19,7 @@
 //! `s_i |z - T_i|` with `T_i = R_i^T (y_i - g_i) / s_i`, computed once.
 
 use crate::mapping::Mapping;
-use crate::position_kernel::DemoKernel;
+use crate::position_kernel::{DemoKernel, StepRead, integrate_reading};
 
 /// How each demo reads its skill run off the mean frame's.
 #[derive(Clone, Debug)]
@@ -29,7 +29,7 @@ enum Views {
     Similar {
         /// `s_i` per demo.
         scale: Vec<f64>,
-        /// `T_i` at `[k * demos + i]`.
+        /// `T_i` at `[i * n + k]`.
         targets: Vec<[f64; 3]>,
     },
     /// Per-axis maps (per-axis factors, or none): demo i's error is
@@ -40,7 +40,7 @@ enum Views {
         /// `r_i` per demo, or `None` where every one is exactly 0 (then
         /// `h` is not integrated).
         offsets: Option<Vec<[f64; 3]>>,
-        /// `y_i - g_i` at `[k * demos + i]`.
+        /// `y_i - g_i` at `[i * n + k]`.
         targets: Vec<[f64; 3]>,
     },
 }
@@ -72,10 +72,8 @@ impl SkillKernel {
         let views = match similar {
             Some(scales) => {
                 let mut flat = Vec::with_capacity(n * demos);
-                for k in 0..n {
-                    for (map, (target, &s)) in maps.iter().zip(targets.iter().zip(scales)) {
-                        flat.push(inverse_similar(map, s, target[k]));
-                    }
+                for (map, (target, &s)) in maps.iter().zip(targets.iter().zip(scales)) {
+                    flat.extend(target.iter().map(|&t| inverse_similar(map, s, t)));
                 }
                 Views::Similar {
                     scale: scales.to_vec(),
@@ -91,10 +89,7 @@ impl SkillKernel {
                     .map(|(a, s)| std::array::from_fn(|ax| s[ax] - a[ax] * z0[ax]))
                     .collect();
                 let any = offsets.iter().flatten().any(|&r| r != 0.0);
-                let mut flat = Vec::with_capacity(n * demos);
-                for k in 0..n {
-                    flat.extend(targets.iter().map(|t| t[k]));
-                }
+                let flat: Vec<[f64; 3]> = targets.iter().flatten().copied().collect();
                 Views::Axes {
                     factors,
                     offsets: any.then_some(offsets),
@@ -107,52 +102,115 @@ impl SkillKernel {
 
     /// Each demo's E at `(dm, km[l])`, at `[demo][lane]`.
     pub(crate) fn integrate<const L: usize>(&self, dm: f64, km: [f64; L]) -> Vec<[f64; L]> {
-        let mut sums = vec![[0.0; L]; self.demos];
-        match &self.views {
-            Views::Similar { scale, targets } => {
-                crate::kernel_dispatch::run(Run {
-                    mean: &self.mean,
-                    dm,
-                    km,
-                    read: Similar { targets },
-                    sums: &mut sums,
-                });
-                for (e, s) in sums.iter_mut().zip(scale) {
-                    *e = e.map(|v| v * s);
-                }
+        let run = self.run(dm, km);
+        let n = self.mean.steps.len();
+        self.read_each(&run, &mut Alone { n })
+    }
+
+    /// Each demo's `[d, a_peak, E]` per lane: `d` and `a_peak` from its
+    /// regeneration `kernels[i]`, E read off the skill's run while that
+    /// integrates (the reading's square roots then overlap the
+    /// integration's additions). The same bits as
+    /// [`crate::position_kernel::integrate`] and [`SkillKernel::integrate`]
+    /// apart.
+    pub(crate) fn regenerate_lanes<const L: usize>(
+        &self,
+        kernels: &[DemoKernel],
+        dm: f64,
+        km: [f64; L],
+    ) -> Vec<[[f64; L]; 3]> {
+        let run = self.run(dm, km);
+        let mut visit = Regenerate {
+            kernels,
+            dm,
+            km,
+            out: Vec::with_capacity(kernels.len()),
+        };
+        let e = self.read_each(&run, &mut visit);
+        visit
+            .out
+            .into_iter()
+            .zip(e)
+            .map(|((d, a), e)| [d, a, e])
+            .collect()
+    }
+
+    /// The skill's run in the mean frame at `(dm, km[l])`, at every grid
+    /// point.
+    fn run<const L: usize>(&self, dm: f64, km: [f64; L]) -> MeanRun<L> {
+        let homogeneous = matches!(
+            self.views,
+            Views::Axes {
+                offsets: Some(_),
+                ..
             }
-            Views::Axes {
-                factors,
-                offsets: None,
-                targets,
-            } => crate::kernel_dispatch::run(Run {
-                mean: &self.mean,
-                dm,
-                km,
-                read: Axes::<false> {
-                    factors,
-                    offsets: &[],
-                    targets,
-                },
-                sums: &mut sums,
-            }),
-            Views::Axes {
-                factors,
-                offsets: Some(offsets),
-                targets,
-            } => crate::kernel_dispatch::run(Run {
-                mean: &self.mean,
-                dm,
-                km,
-                read: Axes::<true> {
-                    factors,
-                    offsets,
-                    targets,
-                },
-                sums: &mut sums,
-            }),
-        }
-        sums
+        );
+        crate::kernel_dispatch::run(RunMean {
+            mean: &self.mean,
+            dm,
+            km,
+            homogeneous,
+        })
+    }
+
+    /// Hands `visit` each demo's reader of its error off `run`, and
+    /// returns each reader's E (`sum_k w_k |e_i(k)| dt`, times `s_i` for
+    /// frame-independent maps).
+    fn read_each<const L: usize, V: Visit<L>>(
+        &self,
+        run: &MeanRun<L>,
+        visit: &mut V,
+    ) -> Vec<[f64; L]> {
+        let n = self.mean.steps.len();
+        let dt = 1.0 / (n - 1) as f64;
+        (0..self.demos)
+            .map(|i| {
+                let range = i * n..(i + 1) * n;
+                match &self.views {
+                    Views::Similar { scale, targets } => {
+                        let mut reader = Similar {
+                            z: &run.z,
+                            targets: &targets[range],
+                            sum: [0.0; L],
+                        };
+                        visit.visit(i, &mut reader);
+                        reader.sum.map(|e| e * dt).map(|e| e * scale[i])
+                    }
+                    Views::Axes {
+                        factors,
+                        offsets: None,
+                        targets,
+                    } => {
+                        let mut reader = Axes::<L, false> {
+                            z: &run.z,
+                            h: &run.h,
+                            factors: factors[i],
+                            offsets: [0.0; 3],
+                            targets: &targets[range],
+                            sum: [0.0; L],
+                        };
+                        visit.visit(i, &mut reader);
+                        reader.sum.map(|e| e * dt)
+                    }
+                    Views::Axes {
+                        factors,
+                        offsets: Some(offsets),
+                        targets,
+                    } => {
+                        let mut reader = Axes::<L, true> {
+                            z: &run.z,
+                            h: &run.h,
+                            factors: factors[i],
+                            offsets: offsets[i],
+                            targets: &targets[range],
+                            sum: [0.0; L],
+                        };
+                        visit.visit(i, &mut reader);
+                        reader.sum.map(|e| e * dt)
+                    }
+                }
+            })
+            .collect()
     }
 }
 
@@ -179,89 +237,133 @@ fn diagonal(map: &Mapping) -> [f64; 3] {
     }
 }
 
-/// How a demo's error vector at one grid point comes from the mean run.
-trait Read<const L: usize> {
-    /// Adds `w |e_i|` of every demo `i` at grid point `k` to `sums[i]`,
-    /// given the mean run `z` and the homogeneous run `h` there.
-    fn add(&self, k: usize, z: &[[f64; L]; 3], h: &[f64; L], w: f64, sums: &mut [[f64; L]]);
-
-    /// Whether the homogeneous run `h` is needed.
-    const HOMOGENEOUS: bool;
+/// The skill's run in the mean frame at `L` gain pairs: `z` at every grid
+/// point, and `h` (empty unless a demo's start needs it).
+struct MeanRun<const L: usize> {
+    z: Vec<[[f64; L]; 3]>,
+    h: Vec<[f64; L]>,
 }
 
-/// [`Views::Similar`]'s reading.
-struct Similar<'a> {
-    targets: &'a [[f64; 3]],
+/// What is done with each demo's reader ([`SkillKernel::read_each`]).
+trait Visit<const L: usize> {
+    /// Steps `reader` through the grid (adding each point's `w |e_i|`).
+    fn visit<R: StepRead<L>>(&mut self, i: usize, reader: &mut R);
 }
 
-impl<const L: usize> Read<L> for Similar<'_> {
-    const HOMOGENEOUS: bool = false;
+/// The reading alone, point by point.
+struct Alone {
+    n: usize,
+}
 
-    #[inline(always)]
-    fn add(&self, k: usize, z: &[[f64; L]; 3], _h: &[f64; L], w: f64, sums: &mut [[f64; L]]) {
-        let row = &self.targets[k * sums.len()..(k + 1) * sums.len()];
-        for (t, sum) in row.iter().zip(sums) {
-            for l in 0..L {
-                let e0 = z[0][l] - t[0];
-                let e1 = z[1][l] - t[1];
-                let e2 = z[2][l] - t[2];
-                sum[l] += w * (e0 * e0 + e1 * e1 + e2 * e2).sqrt();
-            }
-        }
+impl<const L: usize> Visit<L> for Alone {
+    fn visit<R: StepRead<L>>(&mut self, _i: usize, reader: &mut R) {
+        crate::kernel_dispatch::run(Steps::<R, L> { n: self.n, reader });
     }
 }
 
-/// [`Views::Axes`]'s reading, with `h r_i` when `H`.
-struct Axes<'a, const H: bool> {
-    factors: &'a [[f64; 3]],
-    offsets: &'a [[f64; 3]],
-    targets: &'a [[f64; 3]],
-}
-
-impl<const L: usize, const H: bool> Read<L> for Axes<'_, H> {
-    const HOMOGENEOUS: bool = H;
-
-    #[inline(always)]
-    fn add(&self, k: usize, z: &[[f64; L]; 3], h: &[f64; L], w: f64, sums: &mut [[f64; L]]) {
-        let nd = sums.len();
-        let row = &self.targets[k * nd..(k + 1) * nd];
-        for (i, (t, sum)) in row.iter().zip(sums).enumerate() {
-            let a = self.factors[i];
-            let r = if H { self.offsets[i] } else { [0.0; 3] };
-            for l in 0..L {
-                let e: [f64; 3] = std::array::from_fn(|ax| {
-                    let y = a[ax] * z[ax][l];
-                    let y = if H { y + h[l] * r[ax] } else { y };
-                    y - t[ax]
-                });
-                sum[l] += w * (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt();
-            }
-        }
-    }
-}
-
-/// One skill run and its readings, as a call the dispatch compiles per
+/// [`Alone`]'s steps through the grid, as a call the dispatch compiles per
 /// instruction set.
-struct Run<'a, R, const L: usize> {
-    mean: &'a DemoKernel,
-    dm: f64,
-    km: [f64; L],
-    read: R,
-    /// `sum_k w_k |e_i(k)|` per demo and lane; times `dt` on return.
-    sums: &'a mut [[f64; L]],
+struct Steps<'a, R, const L: usize> {
+    n: usize,
+    reader: &'a mut R,
 }
 
-impl<R: Read<L>, const L: usize> crate::kernel_dispatch::Kernel for Run<'_, R, L> {
+impl<R: StepRead<L>, const L: usize> crate::kernel_dispatch::Kernel for Steps<'_, R, L> {
     type Output = ();
 
     #[inline(always)]
     fn call(self) {
+        let n = self.n;
+        for k in 0..n {
+            StepRead::<L>::step(self.reader, k, if k == 0 || k + 1 == n { 0.5 } else { 1.0 });
+        }
+    }
+}
+
+/// The reading inside demo i's regeneration, whose `(d, a_peak)` it keeps.
+struct Regenerate<'a, const L: usize> {
+    kernels: &'a [DemoKernel],
+    dm: f64,
+    km: [f64; L],
+    out: Vec<([f64; L], [f64; L])>,
+}
+
+impl<const L: usize> Visit<L> for Regenerate<'_, L> {
+    fn visit<R: StepRead<L>>(&mut self, i: usize, reader: &mut R) {
+        let kernel = &self.kernels[i];
+        let out = integrate_reading::<L, true, R>(kernel, self.dm, self.km, reader);
+        self.out.push(out);
+    }
+}
+
+/// [`Views::Similar`]'s reader of one demo.
+struct Similar<'a, const L: usize> {
+    z: &'a [[[f64; L]; 3]],
+    /// The demo's `T_i` per grid point.
+    targets: &'a [[f64; 3]],
+    sum: [f64; L],
+}
+
+impl<const L: usize> StepRead<L> for Similar<'_, L> {
+    #[inline(always)]
+    fn step(&mut self, k: usize, w: f64) {
+        let (z, t) = (&self.z[k], self.targets[k]);
+        for l in 0..L {
+            let e0 = z[0][l] - t[0];
+            let e1 = z[1][l] - t[1];
+            let e2 = z[2][l] - t[2];
+            self.sum[l] += w * (e0 * e0 + e1 * e1 + e2 * e2).sqrt();
+        }
+    }
+}
+
+/// [`Views::Axes`]'s reader of one demo, with `h r_i` when `H`.
+struct Axes<'a, const L: usize, const H: bool> {
+    z: &'a [[[f64; L]; 3]],
+    h: &'a [[f64; L]],
+    factors: [f64; 3],
+    offsets: [f64; 3],
+    /// The demo's `y_i - g_i` per grid point.
+    targets: &'a [[f64; 3]],
+    sum: [f64; L],
+}
+
+impl<const L: usize, const H: bool> StepRead<L> for Axes<'_, L, H> {
+    #[inline(always)]
+    fn step(&mut self, k: usize, w: f64) {
+        let (z, t) = (&self.z[k], self.targets[k]);
+        let (a, r) = (self.factors, self.offsets);
+        for l in 0..L {
+            let e: [f64; 3] = std::array::from_fn(|ax| {
+                let y = a[ax] * z[ax][l];
+                let y = if H { y + self.h[k][l] * r[ax] } else { y };
+                y - t[ax]
+            });
+            self.sum[l] += w * (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt();
+        }
+    }
+}
+
+/// The skill's run in the mean frame, as a call the dispatch compiles per
+/// instruction set.
+struct RunMean<'a, const L: usize> {
+    mean: &'a DemoKernel,
+    dm: f64,
+    km: [f64; L],
+    /// Whether to run `h` too.
+    homogeneous: bool,
+}
+
+impl<const L: usize> crate::kernel_dispatch::Kernel for RunMean<'_, L> {
+    type Output = MeanRun<L>;
+
+    #[inline(always)]
+    fn call(self) -> MeanRun<L> {
         let Self {
             mean,
             dm,
             km,
-            read,
-            sums,
+            homogeneous,
         } = self;
         let n = mean.steps.len();
         let dt = 1.0 / (n - 1) as f64;
@@ -270,11 +372,9 @@ impl<R: Read<L>, const L: usize> crate::kernel_dispatch::Kernel for Run<'_, R, L
         let kdt2 = km.map(|k| k * dt2);
         let mut z: [[f64; L]; 3] = std::array::from_fn(|ax| [mean.z0[ax]; L]);
         let mut u: [[f64; L]; 3] = std::array::from_fn(|ax| [mean.u0[ax]; L]);
-        let mut h = [1.0; L];
-        let mut uh = [0.0; L];
-        for (k, step) in mean.steps.iter().enumerate() {
-            let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
-            read.add(k, &z, &h, w, sums);
+        let mut zs = Vec::with_capacity(n);
+        for step in &mean.steps {
+            zs.push(z);
             // The position kernel's step, in the same order.
             for ax in 0..3 {
                 let [f0, f1, f2, _] = step[ax];
@@ -285,7 +385,13 @@ impl<R: Read<L>, const L: usize> crate::kernel_dispatch::Kernel for Run<'_, R, L
                     z[ax][l] += u[ax][l];
                 }
             }
-            if R::HOMOGENEOUS {
+        }
+        let mut hs = Vec::new();
+        if homogeneous {
+            hs.reserve(n);
+            let (mut h, mut uh) = ([1.0; L], [0.0; L]);
+            for _ in 0..n {
+                hs.push(h);
                 for l in 0..L {
                     let du = -(kdt2[l] * h[l]) - ddt * uh[l];
                     uh[l] += du;
@@ -293,9 +399,7 @@ impl<R: Read<L>, const L: usize> crate::kernel_dispatch::Kernel for Run<'_, R, L
                 }
             }
         }
-        for sum in sums.iter_mut() {
-            *sum = sum.map(|e| e * dt);
-        }
+        MeanRun { z: zs, h: hs }
     }
 }
 

@@ -5,6 +5,9 @@ NumPy + SciPy only. Written from the method text, not from any other code.
 import math
 
 import numpy as np
+
+if not hasattr(np, "trapezoid"):  # NumPy before 2.0 (Debian 12 has 1.24)
+    np.trapezoid = np.trapz
 from scipy.signal import savgol_filter
 from scipy.optimize import minimize
 
