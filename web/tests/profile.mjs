@@ -2,6 +2,10 @@
 // CPU profiler over CDP, self time aggregated by function (wasm functions
 // keep their names). A tool for finding where the page's frames go, not a
 // test: `web/build.sh --testing && (cd web/tests && node profile.mjs)`.
+// It then lists the longest stretches the page's thread was busy (breaks
+// shorter than GAP_MS, default 4, joined; IDLE lists the profiler's nodes
+// counted as idle, default "(idle),(program),(garbage collector)") and, for
+// stretch PICK (default 0, the longest), self time and stacks DEPTH deep.
 import { chromium } from "playwright-core";
 import { serve } from "./serve.mjs";
 import { mkdtemp } from "node:fs/promises";
@@ -43,5 +47,53 @@ profile.samples.forEach((id, i) => {
 });
 const top = [...self.entries()].sort((a, b) => b[1] - a[1]).slice(0, Number(process.env.TOP ?? 40));
 for (const [name, ms] of top) console.log(`${ms.toFixed(1).padStart(9)} ms  ${name.slice(0, 140)}`);
+
+// The longest stretch the page's thread was busy without a break of GAP_MS
+// (default 4 ms) or more (what makes the longest frame), by self time and by the
+// outermost wasm function on the stack (what the app was doing).
+const parent = new Map();
+for (const n of profile.nodes) for (const c of n.children ?? []) parent.set(c, n.id);
+const idle = new Set((process.env.IDLE ?? "(idle),(program),(garbage collector)").split(","));
+let t = profile.startTime;
+const times = dt.map((d) => (t += d));
+const name = (id) => byId.get(id).callFrame.functionName;
+const gapUs = Number(process.env.GAP_MS ?? 4) * 1000;
+const stretches = [];
+let start = -1;
+for (let i = 0; i < profile.samples.length; i++) {
+  const busy = !idle.has(name(profile.samples[i]));
+  if (busy && start < 0) start = i;
+  const gapAhead = i + 1 < times.length ? times[i + 1] - times[i] : Infinity;
+  if (start >= 0 && (!busy || gapAhead >= gapUs)) {
+    stretches.push([start, busy ? i : i - 1]);
+    start = -1;
+  }
+}
+const span = ([a, b]) => times[b] - times[a];
+stretches.sort((x, y) => span(y) - span(x));
+console.log("\nthe longest busy stretches (ms, and s after the profile started):");
+for (const s of stretches.slice(0, 6))
+  console.log(`  ${(span(s) / 1000).toFixed(1)} ms at ${((times[s[0]] - profile.startTime) / 1e6).toFixed(3)} s`);
+const best = stretches[Number(process.env.PICK ?? 0)] ?? [0, 0];
+const [b0, b1] = best;
+console.log(`\nlongest busy stretch: ${((times[b1] - times[b0]) / 1000).toFixed(1)} ms, ` +
+  `${((times[b0] - profile.startTime) / 1e6).toFixed(3)} s after the profile started`);
+const selfIn = new Map(), outer = new Map();
+for (let i = b0; i <= b1; i++) {
+  const id = profile.samples[i];
+  const ms = (dt[i + 1] ?? 0) / 1000;
+  selfIn.set(name(id) || "(anonymous)", (selfIn.get(name(id) || "(anonymous)") ?? 0) + ms);
+  // The stack from the root: the first few named frames below the event loop.
+  const stack = [];
+  for (let p = id; p !== undefined; p = parent.get(p)) stack.push(name(p));
+  const path = stack.reverse().filter((f) => f && !idle.has(f) && f !== "(root)").slice(0, Number(process.env.DEPTH ?? 6)).join(" > ");
+  outer.set(path, (outer.get(path) ?? 0) + ms);
+}
+console.log("by self time:");
+for (const [n, ms] of [...selfIn.entries()].sort((a, b) => b[1] - a[1]).slice(0, 20))
+  console.log(`${ms.toFixed(1).padStart(9)} ms  ${n.slice(0, 140)}`);
+console.log("by stack (outermost frames):");
+for (const [n, ms] of [...outer.entries()].sort((a, b) => b[1] - a[1]).slice(0, 20))
+  console.log(`${ms.toFixed(1).padStart(9)} ms  ${n.slice(0, 200)}`);
 await context.close();
 server.close();
