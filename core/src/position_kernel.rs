@@ -62,13 +62,14 @@ impl DemoKernel {
 /// Something computed at each grid point alongside an integration (the
 /// skill error's reading of the skill's run, [`crate::skill_kernel`]).
 pub(crate) trait StepRead<const L: usize> {
-    /// Called at grid point `k` (weight `w` of the trapezoid rule).
-    fn step(&mut self, k: usize, w: f64);
+    /// Called at grid point `k` (weight `w` of the trapezoid rule), with
+    /// the integration's `z = y - g` there.
+    fn step(&mut self, k: usize, w: f64, z: &[[f64; L]; 3]);
 }
 
 impl<const L: usize> StepRead<L> for () {
     #[inline(always)]
-    fn step(&mut self, _k: usize, _w: f64) {}
+    fn step(&mut self, _k: usize, _w: f64, _z: &[[f64; L]; 3]) {}
 }
 
 /// Integrates a kernel at `(dm, km[l])` for each lane (method.md section
@@ -135,6 +136,8 @@ fn integrate_lanes<const L: usize, const PEAK: bool, R: StepRead<L>>(
     let mut err_sum = [0.0; L];
     let mut du2_max = [0.0f64; L];
     for (k, step) in kernel.steps.iter().enumerate() {
+        let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
+        read.step(k, w, &z);
         let mut e2 = [0.0; L];
         let mut du2 = [0.0; L];
         for ax in 0..3 {
@@ -152,8 +155,6 @@ fn integrate_lanes<const L: usize, const PEAK: bool, R: StepRead<L>>(
                 z[ax][l] += u[ax][l];
             }
         }
-        let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
-        read.step(k, w);
         for l in 0..L {
             err_sum[l] += w * e2[l].sqrt();
             if PEAK {

@@ -138,19 +138,19 @@ impl SkillKernel {
     /// The skill's run in the mean frame at `(dm, km[l])`, at every grid
     /// point.
     fn run<const L: usize>(&self, dm: f64, km: [f64; L]) -> MeanRun<L> {
-        let homogeneous = matches!(
-            self.views,
+        let n = self.mean.steps.len();
+        let mut record = Record {
+            zs: Vec::with_capacity(n),
+        };
+        // The position kernel itself (its d, against targets of 0, unused).
+        integrate_reading::<L, false, _>(&self.mean, dm, km, &mut record);
+        let h = match self.views {
             Views::Axes {
-                offsets: Some(_),
-                ..
-            }
-        );
-        crate::kernel_dispatch::run(RunMean {
-            mean: &self.mean,
-            dm,
-            km,
-            homogeneous,
-        })
+                offsets: Some(_), ..
+            } => crate::kernel_dispatch::run(Homogeneous { n, dm, km }),
+            _ => Vec::new(),
+        };
+        MeanRun { z: record.zs, h }
     }
 
     /// Hands `visit` each demo's reader of its error off `run`, and
@@ -274,8 +274,10 @@ impl<R: StepRead<L>, const L: usize> crate::kernel_dispatch::Kernel for Steps<'_
     #[inline(always)]
     fn call(self) {
         let n = self.n;
+        let unused = [[0.0; L]; 3];
         for k in 0..n {
-            StepRead::<L>::step(self.reader, k, if k == 0 || k + 1 == n { 0.5 } else { 1.0 });
+            let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
+            self.reader.step(k, w, &unused);
         }
     }
 }
@@ -306,7 +308,7 @@ struct Similar<'a, const L: usize> {
 
 impl<const L: usize> StepRead<L> for Similar<'_, L> {
     #[inline(always)]
-    fn step(&mut self, k: usize, w: f64) {
+    fn step(&mut self, k: usize, w: f64, _regenerated: &[[f64; L]; 3]) {
         let (z, t) = (&self.z[k], self.targets[k]);
         for l in 0..L {
             let e0 = z[0][l] - t[0];
@@ -330,7 +332,7 @@ struct Axes<'a, const L: usize, const H: bool> {
 
 impl<const L: usize, const H: bool> StepRead<L> for Axes<'_, L, H> {
     #[inline(always)]
-    fn step(&mut self, k: usize, w: f64) {
+    fn step(&mut self, k: usize, w: f64, _regenerated: &[[f64; L]; 3]) {
         let (z, t) = (&self.z[k], self.targets[k]);
         let (a, r) = (self.factors, self.offsets);
         for l in 0..L {
@@ -344,62 +346,46 @@ impl<const L: usize, const H: bool> StepRead<L> for Axes<'_, L, H> {
     }
 }
 
-/// The skill's run in the mean frame, as a call the dispatch compiles per
-/// instruction set.
-struct RunMean<'a, const L: usize> {
-    mean: &'a DemoKernel,
-    dm: f64,
-    km: [f64; L],
-    /// Whether to run `h` too.
-    homogeneous: bool,
+/// Keeps an integration's `z` at every grid point.
+struct Record<const L: usize> {
+    zs: Vec<[[f64; L]; 3]>,
 }
 
-impl<const L: usize> crate::kernel_dispatch::Kernel for RunMean<'_, L> {
-    type Output = MeanRun<L>;
+impl<const L: usize> StepRead<L> for Record<L> {
+    #[inline(always)]
+    fn step(&mut self, _k: usize, _w: f64, z: &[[f64; L]; 3]) {
+        self.zs.push(*z);
+    }
+}
+
+/// The unforced run from 1 at rest, `h`, at every grid point, as a call
+/// the dispatch compiles per instruction set.
+struct Homogeneous<const L: usize> {
+    n: usize,
+    dm: f64,
+    km: [f64; L],
+}
+
+impl<const L: usize> crate::kernel_dispatch::Kernel for Homogeneous<L> {
+    type Output = Vec<[f64; L]>;
 
     #[inline(always)]
-    fn call(self) -> MeanRun<L> {
-        let Self {
-            mean,
-            dm,
-            km,
-            homogeneous,
-        } = self;
-        let n = mean.steps.len();
+    fn call(self) -> Vec<[f64; L]> {
+        let Self { n, dm, km } = self;
         let dt = 1.0 / (n - 1) as f64;
-        let dt2 = dt * dt;
         let ddt = dm * dt;
-        let kdt2 = km.map(|k| k * dt2);
-        let mut z: [[f64; L]; 3] = std::array::from_fn(|ax| [mean.z0[ax]; L]);
-        let mut u: [[f64; L]; 3] = std::array::from_fn(|ax| [mean.u0[ax]; L]);
-        let mut zs = Vec::with_capacity(n);
-        for step in &mean.steps {
-            zs.push(z);
-            // The position kernel's step, in the same order.
-            for ax in 0..3 {
-                let [f0, f1, f2, _] = step[ax];
-                let fd = f0 + dm * f1;
-                for l in 0..L {
-                    let du = fd + km[l] * f2 - kdt2[l] * z[ax][l] - ddt * u[ax][l];
-                    u[ax][l] += du;
-                    z[ax][l] += u[ax][l];
-                }
+        let kdt2 = km.map(|k| k * dt * dt);
+        let (mut h, mut uh) = ([1.0; L], [0.0; L]);
+        let mut hs = Vec::with_capacity(n);
+        for _ in 0..n {
+            hs.push(h);
+            for l in 0..L {
+                let du = -(kdt2[l] * h[l]) - ddt * uh[l];
+                uh[l] += du;
+                h[l] += uh[l];
             }
         }
-        let mut hs = Vec::new();
-        if homogeneous {
-            hs.reserve(n);
-            let (mut h, mut uh) = ([1.0; L], [0.0; L]);
-            for _ in 0..n {
-                hs.push(h);
-                for l in 0..L {
-                    let du = -(kdt2[l] * h[l]) - ddt * uh[l];
-                    uh[l] += du;
-                    h[l] += uh[l];
-                }
-            }
-        }
-        MeanRun { z: zs, h: hs }
+        hs
     }
 }
 
