@@ -352,19 +352,29 @@ impl Model {
         (self.evaluate_with_rot(dm, km, rot), turns)
     }
 
+    /// Each demo's `[d, a_peak, E]` at `(dm, km[l])` (E NaN without a
+    /// skill error): the regenerations, with E read off the skill's run
+    /// inside them.
+    fn regenerations<const L: usize>(&self, dm: f64, km: [f64; L]) -> Vec<[[f64; L]; 3]> {
+        match &self.skill {
+            Ok(skill) => skill.regenerate_lanes(&self.kernels, dm, km),
+            Err(_) => self
+                .kernels
+                .iter()
+                .map(|kernel| {
+                    let (d, a) = integrate::<L, true>(kernel, dm, km);
+                    [d, a, [f64::NAN; L]]
+                })
+                .collect(),
+        }
+    }
+
     /// [`Model::evaluate`] given each demo's `(d_rot, alpha_peak)`.
     fn evaluate_with_rot(&self, dm: f64, km: f64, rot: Vec<(f64, f64)>) -> PointEval {
-        let mut d = Vec::with_capacity(self.demos.len());
-        let mut a_peak = Vec::with_capacity(self.demos.len());
-        for kernel in &self.kernels {
-            let (di, ai) = integrate::<1, true>(kernel, dm, [km]);
-            d.push(di[0]);
-            a_peak.push(ai[0]);
-        }
-        let e: Vec<f64> = match &self.skill {
-            Ok(skill) => skill.integrate(dm, [km]).iter().map(|e| e[0]).collect(),
-            Err(_) => vec![f64::NAN; self.demos.len()],
-        };
+        let each = self.regenerations(dm, [km]);
+        let d: Vec<f64> = each.iter().map(|[d, _, _]| d[0]).collect();
+        let a_peak: Vec<f64> = each.iter().map(|[_, a, _]| a[0]).collect();
+        let e: Vec<f64> = each.iter().map(|[_, _, e]| e[0]).collect();
         let d_sum = d.iter().sum();
         let d_rot: Vec<f64> = rot.iter().map(|r| r.0).collect();
         // Over the demos with orientation, in order, as the lanes sum.
@@ -398,28 +408,13 @@ impl Model {
     pub fn evaluate_lanes<const L: usize>(&self, dm: f64, km: [f64; L]) -> [PointValues; L] {
         let mut d_sum = [0.0; L];
         let mut peak = [0.0f64; L];
+        // NaN without a skill error: the sum stays NaN.
         let mut e_sum = [0.0; L];
-        let each: Vec<[[f64; L]; 3]> = match &self.skill {
-            // E read off the skill's run inside each regeneration.
-            Ok(skill) => skill.regenerate_lanes(&self.kernels, dm, km),
-            Err(_) => {
-                e_sum = [f64::NAN; L];
-                let nan = [f64::NAN; L];
-                let each = self.kernels.iter().map(|kernel| {
-                    let (d, a) = integrate::<L, true>(kernel, dm, km);
-                    [d, a, nan]
-                });
-                each.collect()
-            }
-        };
-        let with_e = self.skill.is_ok();
-        for [d, a, e] in each {
+        for [d, a, e] in self.regenerations(dm, km) {
             for l in 0..L {
                 d_sum[l] += d[l];
                 peak[l] = crate::kernel_dispatch::larger(peak[l], a[l]);
-                if with_e {
-                    e_sum[l] += e[l];
-                }
+                e_sum[l] += e[l];
             }
         }
         let s = self.similarity.evaluate_lanes(dm, km);

@@ -166,10 +166,6 @@ pub(crate) fn kernels(
                 .collect()
         })
         .collect();
-    let starts: Vec<[f64; 3]> = demos
-        .iter()
-        .map(|d| std::array::from_fn(|ax| d.y_raw[0][ax] - d.goal[ax]))
-        .collect();
     let steps = parts
         .iter()
         .map(|p| std::array::from_fn(|ax| [p[0][ax], p[1][ax], p[2][ax], 0.0]))
@@ -179,11 +175,5 @@ pub(crate) fn kernels(
         std::array::from_fn(|ax| -mean_d[ax]),
         std::array::from_fn(|ax| v0[ax] * dt),
     );
-    Ok(SkillKernel::new(
-        mean,
-        &back,
-        &targets,
-        &starts,
-        similar.as_deref(),
-    ))
+    Ok(SkillKernel::new(mean, &back, &targets, similar.as_deref()))
 }

@@ -58,13 +58,13 @@ impl SkillKernel {
     /// The kernel of the skill `mean` (forcing parts times `dt^2`, `z0`
     /// and `u0` in the mean frame), mapped to each demo by `maps` (the map
     /// of the mean displacement to the demo's); `targets[i][k]` is
-    /// `y_i - g_i` on the grid, `starts[i]` is `z0_i`. `similar` says the
-    /// maps are frame-independent (`scales[i]` their `s_i`).
+    /// `y_i - g_i` on the grid (so `targets[i][0]` is the demo's start
+    /// `z0_i`). `similar` says the maps are frame-independent (`scales[i]`
+    /// their `s_i`).
     pub(crate) fn new(
         mean: DemoKernel,
         maps: &[Mapping],
         targets: &[Vec<[f64; 3]>],
-        starts: &[[f64; 3]],
         similar: Option<&[f64]>,
     ) -> Self {
         let demos = maps.len();
@@ -85,8 +85,8 @@ impl SkillKernel {
                 let z0 = mean.z0;
                 let offsets: Vec<[f64; 3]> = factors
                     .iter()
-                    .zip(starts)
-                    .map(|(a, s)| std::array::from_fn(|ax| s[ax] - a[ax] * z0[ax]))
+                    .zip(targets)
+                    .map(|(a, t)| std::array::from_fn(|ax| t[0][ax] - a[ax] * z0[ax]))
                     .collect();
                 let any = offsets.iter().flatten().any(|&r| r != 0.0);
                 let flat: Vec<[f64; 3]> = targets.iter().flatten().copied().collect();
@@ -100,19 +100,11 @@ impl SkillKernel {
         Self { mean, views, demos }
     }
 
-    /// Each demo's E at `(dm, km[l])`, at `[demo][lane]`.
-    pub(crate) fn integrate<const L: usize>(&self, dm: f64, km: [f64; L]) -> Vec<[f64; L]> {
-        let run = self.run(dm, km);
-        let n = self.mean.steps.len();
-        self.read_each(&run, &mut Alone { n })
-    }
-
     /// Each demo's `[d, a_peak, E]` per lane: `d` and `a_peak` from its
     /// regeneration `kernels[i]`, E read off the skill's run while that
     /// integrates (the reading's square roots then overlap the
-    /// integration's additions). The same bits as
-    /// [`crate::position_kernel::integrate`] and [`SkillKernel::integrate`]
-    /// apart.
+    /// integration's additions). Each lane's numbers are those of a lone
+    /// pair, to the bit.
     pub(crate) fn regenerate_lanes<const L: usize>(
         &self,
         kernels: &[DemoKernel],
@@ -120,19 +112,59 @@ impl SkillKernel {
         km: [f64; L],
     ) -> Vec<[[f64; L]; 3]> {
         let run = self.run(dm, km);
-        let mut visit = Regenerate {
-            kernels,
-            dm,
-            km,
-            out: Vec::with_capacity(kernels.len()),
+        let n = self.mean.steps.len();
+        let dt = 1.0 / (n - 1) as f64;
+        let regenerate = |i: usize| -> [[f64; L]; 3] {
+            let kernel = &kernels[i];
+            let range = i * n..(i + 1) * n;
+            // E is `sum_k w_k |e_i(k)| dt`, times `s_i` for
+            // frame-independent maps.
+            match &self.views {
+                Views::Similar { scale, targets } => {
+                    let mut reader = Similar {
+                        z: &run.z,
+                        targets: &targets[range],
+                        sum: [0.0; L],
+                    };
+                    let (d, a) = integrate_reading::<L, true, _>(kernel, dm, km, &mut reader);
+                    [d, a, reader.sum.map(|e| e * dt).map(|e| e * scale[i])]
+                }
+                Views::Axes {
+                    factors,
+                    offsets: None,
+                    targets,
+                } => {
+                    let mut reader = Axes::<L, false> {
+                        z: &run.z,
+                        h: &run.h,
+                        factors: factors[i],
+                        offsets: [0.0; 3],
+                        targets: &targets[range],
+                        sum: [0.0; L],
+                    };
+                    let (d, a) = integrate_reading::<L, true, _>(kernel, dm, km, &mut reader);
+                    [d, a, reader.sum.map(|e| e * dt)]
+                }
+                Views::Axes {
+                    factors,
+                    offsets: Some(offsets),
+                    targets,
+                } => {
+                    let mut reader = Axes::<L, true> {
+                        z: &run.z,
+                        h: &run.h,
+                        factors: factors[i],
+                        offsets: offsets[i],
+                        targets: &targets[range],
+                        sum: [0.0; L],
+                    };
+                    let (d, a) = integrate_reading::<L, true, _>(kernel, dm, km, &mut reader);
+                    [d, a, reader.sum.map(|e| e * dt)]
+                }
+            }
         };
-        let e = self.read_each(&run, &mut visit);
-        visit
-            .out
-            .into_iter()
-            .zip(e)
-            .map(|((d, a), e)| [d, a, e])
-            .collect()
+        debug_assert_eq!(kernels.len(), self.demos, "one regeneration per demo");
+        (0..self.demos).map(regenerate).collect()
     }
 
     /// The skill's run in the mean frame at `(dm, km[l])`, at every grid
@@ -151,66 +183,6 @@ impl SkillKernel {
             _ => Vec::new(),
         };
         MeanRun { z: record.zs, h }
-    }
-
-    /// Hands `visit` each demo's reader of its error off `run`, and
-    /// returns each reader's E (`sum_k w_k |e_i(k)| dt`, times `s_i` for
-    /// frame-independent maps).
-    fn read_each<const L: usize, V: Visit<L>>(
-        &self,
-        run: &MeanRun<L>,
-        visit: &mut V,
-    ) -> Vec<[f64; L]> {
-        let n = self.mean.steps.len();
-        let dt = 1.0 / (n - 1) as f64;
-        (0..self.demos)
-            .map(|i| {
-                let range = i * n..(i + 1) * n;
-                match &self.views {
-                    Views::Similar { scale, targets } => {
-                        let mut reader = Similar {
-                            z: &run.z,
-                            targets: &targets[range],
-                            sum: [0.0; L],
-                        };
-                        visit.visit(i, &mut reader);
-                        reader.sum.map(|e| e * dt).map(|e| e * scale[i])
-                    }
-                    Views::Axes {
-                        factors,
-                        offsets: None,
-                        targets,
-                    } => {
-                        let mut reader = Axes::<L, false> {
-                            z: &run.z,
-                            h: &run.h,
-                            factors: factors[i],
-                            offsets: [0.0; 3],
-                            targets: &targets[range],
-                            sum: [0.0; L],
-                        };
-                        visit.visit(i, &mut reader);
-                        reader.sum.map(|e| e * dt)
-                    }
-                    Views::Axes {
-                        factors,
-                        offsets: Some(offsets),
-                        targets,
-                    } => {
-                        let mut reader = Axes::<L, true> {
-                            z: &run.z,
-                            h: &run.h,
-                            factors: factors[i],
-                            offsets: offsets[i],
-                            targets: &targets[range],
-                            sum: [0.0; L],
-                        };
-                        visit.visit(i, &mut reader);
-                        reader.sum.map(|e| e * dt)
-                    }
-                }
-            })
-            .collect()
     }
 }
 
@@ -242,60 +214,6 @@ fn diagonal(map: &Mapping) -> [f64; 3] {
 struct MeanRun<const L: usize> {
     z: Vec<[[f64; L]; 3]>,
     h: Vec<[f64; L]>,
-}
-
-/// What is done with each demo's reader ([`SkillKernel::read_each`]).
-trait Visit<const L: usize> {
-    /// Steps `reader` through the grid (adding each point's `w |e_i|`).
-    fn visit<R: StepRead<L>>(&mut self, i: usize, reader: &mut R);
-}
-
-/// The reading alone, point by point.
-struct Alone {
-    n: usize,
-}
-
-impl<const L: usize> Visit<L> for Alone {
-    fn visit<R: StepRead<L>>(&mut self, _i: usize, reader: &mut R) {
-        crate::kernel_dispatch::run(Steps::<R, L> { n: self.n, reader });
-    }
-}
-
-/// [`Alone`]'s steps through the grid, as a call the dispatch compiles per
-/// instruction set.
-struct Steps<'a, R, const L: usize> {
-    n: usize,
-    reader: &'a mut R,
-}
-
-impl<R: StepRead<L>, const L: usize> crate::kernel_dispatch::Kernel for Steps<'_, R, L> {
-    type Output = ();
-
-    #[inline(always)]
-    fn call(self) {
-        let n = self.n;
-        let unused = [[0.0; L]; 3];
-        for k in 0..n {
-            let w = if k == 0 || k + 1 == n { 0.5 } else { 1.0 };
-            self.reader.step(k, w, &unused);
-        }
-    }
-}
-
-/// The reading inside demo i's regeneration, whose `(d, a_peak)` it keeps.
-struct Regenerate<'a, const L: usize> {
-    kernels: &'a [DemoKernel],
-    dm: f64,
-    km: [f64; L],
-    out: Vec<([f64; L], [f64; L])>,
-}
-
-impl<const L: usize> Visit<L> for Regenerate<'_, L> {
-    fn visit<R: StepRead<L>>(&mut self, i: usize, reader: &mut R) {
-        let kernel = &self.kernels[i];
-        let out = integrate_reading::<L, true, R>(kernel, self.dm, self.km, reader);
-        self.out.push(out);
-    }
 }
 
 /// [`Views::Similar`]'s reader of one demo.
@@ -394,7 +312,6 @@ mod tests {
     use super::*;
     use crate::generalise::Scaling;
     use crate::geom::Vec3;
-    use crate::position_kernel::integrate;
 
     const N: usize = 201;
 
@@ -408,22 +325,19 @@ mod tests {
             .collect()
     }
 
-    /// E of each demo by running the skill towards it (the forcing term
-    /// `P_i G`, start `z0_i`, `u0_i = P_i u0`), as E was computed before
-    /// this kernel: one integration per demo.
-    fn direct<const L: usize>(
+    /// The skill run towards each demo as E was computed before this
+    /// kernel, one integration per demo (the forcing term `P_i G`, start
+    /// `z0_i`, `u0_i = P_i u0`): as a regeneration, its `d` is that E.
+    fn direct(
         parts: &[[[f64; 3]; 3]],
         u0: [f64; 3],
         maps: &[Mapping],
         targets: &[Vec<[f64; 3]>],
-        starts: &[[f64; 3]],
-        dm: f64,
-        km: [f64; L],
-    ) -> Vec<[f64; L]> {
+    ) -> Vec<DemoKernel> {
         let apply = |m: &Mapping, v: [f64; 3]| -> [f64; 3] { m.apply(Vec3::from(v)).into() };
         maps.iter()
-            .zip(targets.iter().zip(starts))
-            .map(|(m, (target, &z0))| {
+            .zip(targets)
+            .map(|(m, target)| {
                 let steps = parts
                     .iter()
                     .zip(target)
@@ -432,8 +346,7 @@ mod tests {
                         std::array::from_fn(|ax| [g[0][ax], g[1][ax], g[2][ax], t[ax]])
                     })
                     .collect();
-                let kernel = DemoKernel::from_parts(steps, z0, apply(m, u0));
-                integrate::<L, false>(&kernel, dm, km).0
+                DemoKernel::from_parts(steps, target[0], apply(m, u0))
             })
             .collect()
     }
@@ -448,8 +361,6 @@ mod tests {
         let own: Vec<Vec3> = [[0.3, 0.1, -0.2], [-0.3, 0.25, 0.1], [0.1, 0.2, 0.05]]
             .map(Vec3::from)
             .to_vec();
-        let starts: Vec<[f64; 3]> = own.iter().map(|d| d.map(|v| -v).into()).collect();
-        let targets: Vec<Vec<[f64; 3]>> = (0..3).map(|i| curve(i as f64, 0.2)).collect();
         let p: [Vec<[f64; 3]>; 3] = [curve(0.5, 20.0), curve(1.5, 1.0), curve(2.5, 3.0)];
         let parts: Vec<[[f64; 3]; 3]> = (0..N)
             .map(|k| std::array::from_fn(|c| p[c][k].map(|v| v * dt2)))
@@ -463,6 +374,16 @@ mod tests {
                 own[2][0] = 0.0;
             }
             let mean_d = Vec3::from_fn(|a, _| own.iter().map(|d| d[a]).sum::<f64>() / 3.0);
+            // Each demo starts at minus its displacement from its goal.
+            let targets: Vec<Vec<[f64; 3]>> = own
+                .iter()
+                .enumerate()
+                .map(|(i, d)| {
+                    let mut t = curve(i as f64, 0.2);
+                    t[0] = d.map(|v| -v).into();
+                    t
+                })
+                .collect();
             let maps: Vec<Mapping> = own
                 .iter()
                 .map(|&d| match mode {
@@ -482,7 +403,7 @@ mod tests {
             let z0 = mean_d.map(|v| -v).into();
             let mean = DemoKernel::from_parts(steps, z0, u0);
             let similar = (mode == "frame").then_some(scales.as_slice());
-            let kernel = SkillKernel::new(mean, &maps, &targets, &starts, similar);
+            let kernel = SkillKernel::new(mean, &maps, &targets, similar);
             if mode != "frame" {
                 assert!(
                     matches!(
@@ -495,23 +416,23 @@ mod tests {
                     "{mode}: the starts need the homogeneous run"
                 );
             }
-            let ours = kernel.integrate(dm, km);
-            let want = direct(&parts, u0, &maps, &targets, &starts, dm, km);
-            for (i, (a, b)) in ours.iter().zip(&want).enumerate() {
+            let regenerations = direct(&parts, u0, &maps, &targets);
+            let ours = kernel.regenerate_lanes(&regenerations, dm, km);
+            for (i, [want, _, e]) in ours.iter().enumerate() {
                 for l in 0..4 {
-                    let rel = (a[l] - b[l]).abs() / b[l];
+                    let rel = (e[l] - want[l]).abs() / want[l];
                     assert!(
                         rel < 1e-12,
                         "{mode}, demo {i}, lane {l}: {} vs {}",
-                        a[l],
-                        b[l]
+                        e[l],
+                        want[l]
                     );
                 }
             }
             // A lone pair gives the bits of its lane in a batch.
-            let lone = kernel.integrate(dm, [km[2]]);
+            let lone = kernel.regenerate_lanes(&regenerations, dm, [km[2]]);
             for (a, b) in lone.iter().zip(&ours) {
-                assert_eq!(a[0], b[2]);
+                assert_eq!(a.map(|q| q[0]), b.map(|q| q[2]));
             }
         }
     }

@@ -33,9 +33,6 @@ import time
 
 import numpy as np
 
-if not hasattr(np, "trapezoid"):  # NumPy before 2.0 (Debian 12 has 1.24)
-    np.trapezoid = np.trapz
-
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import method as m  # noqa: E402

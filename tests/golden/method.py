@@ -6,7 +6,9 @@ import math
 
 import numpy as np
 
-if not hasattr(np, "trapezoid"):  # NumPy before 2.0 (Debian 12 has 1.24)
+# NumPy before 2.0 (Debian 12 has 1.24) has np.trapz only; the other
+# scripts import this module, so this serves them too.
+if not hasattr(np, "trapezoid"):
     np.trapezoid = np.trapz
 from scipy.signal import savgol_filter
 from scipy.optimize import minimize

@@ -50,9 +50,6 @@ import sys
 import time
 
 import numpy as np
-
-if not hasattr(np, "trapezoid"):  # NumPy before 2.0 (Debian 12 has 1.24)
-    np.trapezoid = np.trapz
 from scipy.signal import savgol_filter
 
 import method as m
