@@ -14,14 +14,20 @@
 //! rounding size.
 //!
 //! The transcendental functions are polynomials where their arguments
-//! allow, so the lanes vectorise (`H` and `P` evaluated as their even and
-//! odd halves in `x^2`, two chains of half the length: 476 -> 460 ms for
-//! the planted8 d_rot landscape against one Horner chain): with `x = 1 - c`
-//! for a unit quaternion's scalar part `c` in [0, 1], `atan2(|v|, c) / |v|
-//! = H(x)` and `acos(c) = sqrt(2 x) P(x)`, `H` and `P` Chebyshev
-//! interpolants on [0, 1] (relative errors 3.9e-10 for `P`, which only
-//! weighs the error angle, and 1.6e-12 for `H`, which drives the rollout:
-//! at degree 12, 5.7e-11, `alpha_peak` at K/M 900 left the golden 1e-9);
+//! allow, so the lanes vectorise (each evaluated as its even and odd
+//! halves in `x^2`, two chains of half the length: 476 -> 460 ms for the
+//! planted8 d_rot landscape against one Horner chain): with `x = 1 - c`
+//! for a unit quaternion's scalar part `c` in [0, 1], `2 atan2(|v|, c) /
+//! |v| = LOG(x)` and `2 acos(c) = sqrt(x) ANGLE(x)`, Chebyshev interpolants
+//! on [0, 1] (relative errors 1.6e-12 for `LOG`, which drives the rollout:
+//! at degree 12, 5.7e-11, `alpha_peak` at K/M 900 left the golden 1e-9;
+//! 3.9e-10 for `ANGLE`, which only weighs the error angle). Where every
+//! lane's `x` is at most 0.3 (a rotation of up to 91 degrees, the usual
+//! step) shorter interpolants on [0, 0.3] take their place (degree 8
+//! instead of 14 for `LOG`, 1.7e-13; 6 instead of 9 for `ANGLE`, 5.1e-12:
+//! the planted8 d_rot landscape 412 -> 373 ms); a lane past 0.3 takes the
+//! long one, lane by lane, so a lane's numbers never depend on its
+//! neighbours.
 //! `exp(u)` is its Taylor series in `|u|^2`, short while `|u|^2 <= 1e-4`
 //! and longer while `|u|^2 <= 2.5e-3` (truncation below 3e-16). Where an
 //! argument leaves that range (a rotation to go of more than 180 degrees,
@@ -34,7 +40,10 @@ use crate::dmp::Projections;
 use crate::orientation::{OrientationRollout, PreparedOrientation};
 use wide::f64x4;
 
-use crate::orientation_poly::{COS, COS_SHORT, H, P, SINC, SINC_SHORT, horner, horner_split};
+use crate::orientation_poly::{
+    ANGLE, ANGLE_SHORT, COS, COS_SHORT, LOG, LOG_SHORT, SHORT_X, SINC, SINC_SHORT, horner,
+    horner_split,
+};
 use crate::rotation::{self, Q};
 
 /// The largest `|u|^2` for which `exp(u)` takes its short Taylor series
@@ -186,13 +195,14 @@ impl<const V: usize> Lanes<V> {
         let c = each::<V>(|v| {
             (r[0][v] * t[0][v] + r[1][v] * t[1][v] + r[2][v] * t[2][v] + r[3][v] * t[3][v]).abs()
         });
-        // min(1, c) as 1 - c >= 0; a NaN state (a diverged run) stays NaN.
+        // min(1, c) as 1 - c >= 0; a NaN state (a diverged run) stays NaN
+        // (its compare is false).
         let x = each::<V>(|v| {
             let x = ONE - c[v];
-            x.is_nan().bitselect(x, x.max(f64x4::ZERO))
+            x.simd_lt(f64x4::ZERO).bitselect(f64x4::ZERO, x)
         });
-        let p = horner_split(&P, x);
-        each(|v| TWO * (TWO * x[v]).sqrt() * p[v])
+        let (p, _) = short_or_long(&ANGLE_SHORT, &ANGLE, x);
+        each(|v| x[v].sqrt() * p[v])
     }
 
     /// One step with the forcing parts `parts` (`[F0, F1, F2]` per axis)
@@ -223,15 +233,11 @@ impl<const V: usize> Lanes<V> {
         km: &Lane<V>,
         dt: &Lane<V>,
     ) -> [Lane<V>; 3] {
-        // 2 log(r) = 2 H(1 - r_w) vec(r), exact where r_w < 0.
-        let h = horner_split(&H, each::<V>(|v| ONE - self.r[3][v]));
-        let mut factor = each::<V>(|v| TWO * h[v]);
-        // One test for all the vectors in the usual step (no lane past 180
-        // degrees), then vector by vector.
-        let past = (1..V).fold(self.r[3][0].simd_lt(f64x4::ZERO), |m, v| {
-            m | self.r[3][v].simd_lt(f64x4::ZERO)
-        });
-        if past.any() {
+        // 2 log(r) = LOG(1 - r_w) vec(r), exact where r_w < 0.
+        let (mut factor, long) = short_or_long(&LOG_SHORT, &LOG, each::<V>(|v| ONE - self.r[3][v]));
+        // Past 180 degrees (r_w < 0, so 1 - r_w > SHORT_X): the exact
+        // factor, vector by vector.
+        if long.any() {
             for v in 0..V {
                 let rw = self.r[3][v].to_array();
                 if rw.iter().any(|&c| c < 0.0) {
@@ -332,8 +338,31 @@ impl<const V: usize> Lanes<V> {
     }
 }
 
+/// The polynomial `short` of `x` per lane where `x <= SHORT_X` (every
+/// lane in the usual step: one test for all the vectors), `long` where it
+/// is not, lane by lane; and whether any lane took `long`. A lane's value
+/// depends only on its own `x`, whatever its neighbours.
+#[inline(always)]
+fn short_or_long<const S: usize, const N: usize, const V: usize>(
+    short: &[f64; S],
+    long: &[f64; N],
+    x: Lane<V>,
+) -> (Lane<V>, f64x4) {
+    let mut p = horner_split(short, x);
+    let limit = f64x4::splat(SHORT_X);
+    let beyond = (1..V).fold(x[0].simd_gt(limit), |m, v| m | x[v].simd_gt(limit));
+    if beyond.any() {
+        for v in 0..V {
+            let past = x[v].simd_gt(limit);
+            if past.any() {
+                p[v] = past.bitselect(horner_split(long, [x[v]])[0], p[v]);
+            }
+        }
+    }
+    (p, beyond)
+}
+
 const ONE: f64x4 = f64x4::splat(1.0);
-const TWO: f64x4 = f64x4::splat(2.0);
 
 /// `atan2(|v|, w) / |v|` of a unit quaternion `(v, w)`, 0 where `v = 0`
 /// (method.md section 12's `log`, without its vector).
