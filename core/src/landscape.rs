@@ -76,9 +76,14 @@ impl Axis {
                 v
             }
             AxisScale::Log => {
-                let (a, b) = (self.lo.log10(), self.hi.log10());
+                let (a, b) = (
+                    crate::portable::log10(self.lo),
+                    crate::portable::log10(self.hi),
+                );
                 let step = (b - a) / (n - 1) as f64;
-                let mut v: Vec<f64> = (0..n).map(|i| 10f64.powf(i as f64 * step + a)).collect();
+                let mut v: Vec<f64> = (0..n)
+                    .map(|i| crate::portable::pow(10.0, i as f64 * step + a))
+                    .collect();
                 v[0] = self.lo;
                 v[n - 1] = self.hi;
                 v
@@ -89,7 +94,7 @@ impl Axis {
     /// Maps a value to the coordinate the axis is even in (ln for log).
     pub fn to_coord(&self, value: f64) -> f64 {
         match self.scale {
-            AxisScale::Log => value.ln(),
+            AxisScale::Log => crate::portable::ln(value),
             AxisScale::Linear => value,
         }
     }
@@ -97,7 +102,7 @@ impl Axis {
     /// The inverse of [`Axis::to_coord`].
     pub fn from_coord(&self, coord: f64) -> f64 {
         match self.scale {
-            AxisScale::Log => coord.exp(),
+            AxisScale::Log => crate::portable::exp(coord),
             AxisScale::Linear => coord,
         }
     }

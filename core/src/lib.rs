@@ -48,6 +48,7 @@ mod orientation_poly;
 pub mod pipeline;
 pub mod planted;
 mod planted_orientation;
+pub mod portable;
 mod position_kernel;
 pub mod prepare;
 pub mod presets;

@@ -145,8 +145,12 @@ fn smallest_rotation(a: [f64; 3], b: [f64; 3]) -> Option<[[f64; 3]; 3]> {
         let lp = norm(p);
         (p.map(|v| v / lp), 0.0, 2.0)
     } else {
-        let angle = sin.atan2(c);
-        (axis.map(|v| v / sin), angle.sin(), 1.0 - angle.cos())
+        let angle = crate::portable::atan2(sin, c);
+        (
+            axis.map(|v| v / sin),
+            crate::portable::sin(angle),
+            1.0 - crate::portable::cos(angle),
+        )
     };
     Some([
         [

@@ -32,7 +32,7 @@
 //! and longer while `|u|^2 <= 2.5e-3` (truncation below 3e-16). Where an
 //! argument leaves that range (a rotation to go of more than 180 degrees,
 //! `|w| dt / 2` over 0.05 rad, an angular step over 0.1 rad) the lane takes
-//! `atan2`, `sin` and `cos` from the `libm` crate. Plain multiplications
+//! `atan2`, `sin` and `cos` of `crate::portable` (the `libm` crate). Plain multiplications
 //! and additions, no fused multiply-add, and the same `libm` natively and
 //! in the browser: the browser's build gives the same bits.
 
@@ -299,8 +299,8 @@ impl<const V: usize> Lanes<V> {
                     for l in 0..4 {
                         if sa[l] > EXP_SERIES_MAX {
                             let n = sa[l].sqrt();
-                            sn[l] = libm::sin(n) / n;
-                            cs[l] = libm::cos(n);
+                            sn[l] = crate::portable::sin(n) / n;
+                            cs[l] = crate::portable::cos(n);
                         }
                     }
                     sinc[v] = f64x4::new(sn);
@@ -371,7 +371,7 @@ fn exact_log_factor(r: Q) -> f64 {
     if n == 0.0 {
         0.0
     } else {
-        libm::atan2(n, r[3]) / n
+        crate::portable::atan2(n, r[3]) / n
     }
 }
 

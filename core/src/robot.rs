@@ -2,6 +2,7 @@
 //! per unit mass turned into real time at a duration T, and the
 //! spring-damper's natural frequency, damping ratio and 2 % settling time.
 
+use crate::portable::{cos, exp, ln, sin};
 use serde::{Deserialize, Serialize};
 
 /// The band a settled response stays within, as a fraction of the distance
@@ -129,9 +130,9 @@ impl Response {
 
     fn at(&self, t: f64) -> f64 {
         match *self {
-            Self::Under { s, w } => (-s * t).exp() * ((w * t).cos() + s / w * (w * t).sin()),
-            Self::Critical { w } => (-w * t).exp() * (1.0 + w * t),
-            Self::Over { r1, r2 } => (r2 * (r1 * t).exp() - r1 * (r2 * t).exp()) / (r2 - r1),
+            Self::Under { s, w } => exp(-s * t) * (cos(w * t) + s / w * sin(w * t)),
+            Self::Critical { w } => exp(-w * t) * (1.0 + w * t),
+            Self::Over { r1, r2 } => (r2 * exp(r1 * t) - r1 * exp(r2 * t)) / (r2 - r1),
         }
     }
 
@@ -140,14 +141,14 @@ impl Response {
         let band = SETTLE_BAND;
         match *self {
             // |x| <= e^{-s t} sqrt(1 + (s/w)^2).
-            Self::Under { s, w } => ((1.0 + (s / w).powi(2)).sqrt() / band).ln() / s,
+            Self::Under { s, w } => ln((1.0 + (s / w).powi(2)).sqrt() / band) / s,
             // e^{-w t} (1 + w t) <= 2 e^{-w t / 2} (since 1 + u <= 2 e^{u/2}).
-            Self::Critical { w } => 2.0 * (2.0 / band).ln() / w,
+            Self::Critical { w } => 2.0 * ln(2.0 / band) / w,
             // Both terms decay at least as e^{r1 t}; the sum of the
             // coefficients' magnitudes bounds the rest.
             Self::Over { r1, r2 } => {
                 let c = (r2.abs() + r1.abs()) / (r2 - r1).abs();
-                (c / band).ln() / -r1
+                ln(c / band) / -r1
             }
         }
         .max(1e-9)

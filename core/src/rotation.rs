@@ -49,7 +49,7 @@ pub fn log(q: Q) -> [f64; 3] {
     if n == 0.0 {
         return [0.0; 3];
     }
-    let s = n.atan2(q[3]) / n;
+    let s = crate::portable::atan2(n, q[3]) / n;
     v.map(|c| c * s)
 }
 
@@ -59,7 +59,7 @@ pub fn exp(u: [f64; 3]) -> Q {
     if n == 0.0 {
         return IDENTITY;
     }
-    let (sin, cos) = n.sin_cos();
+    let (sin, cos) = crate::portable::sin_cos(n);
     let s = sin / n;
     [u[0] * s, u[1] * s, u[2] * s, cos]
 }
@@ -77,7 +77,7 @@ pub fn angle(a: Q, b: Q) -> f64 {
     if d.is_nan() {
         return f64::NAN;
     }
-    2.0 * d.min(1.0).acos()
+    2.0 * crate::portable::acos(d.min(1.0))
 }
 
 /// Spherical linear interpolation from `a` (t = 0) to `b` (t = 1) along
@@ -94,9 +94,12 @@ pub fn slerp(a: Q, b: Q, t: f64) -> Q {
         // Nearly equal: the chord is the arc to rounding.
         return normalised(std::array::from_fn(|i| a[i] + t * (b[i] - a[i])));
     }
-    let theta = d.min(1.0).acos();
-    let sin = theta.sin();
-    let (wa, wb) = (((1.0 - t) * theta).sin() / sin, (t * theta).sin() / sin);
+    let theta = crate::portable::acos(d.min(1.0));
+    let sin = crate::portable::sin(theta);
+    let (wa, wb) = (
+        crate::portable::sin((1.0 - t) * theta) / sin,
+        crate::portable::sin(t * theta) / sin,
+    );
     std::array::from_fn(|i| wa * a[i] + wb * b[i])
 }
 

@@ -190,9 +190,12 @@ fn slerp(a: Quat, mut b: Quat, u: f64) -> Quat {
     if dot > 0.9995 {
         return normalised(std::array::from_fn(|k| a[k] + u * (b[k] - a[k])));
     }
-    let theta = dot.clamp(-1.0, 1.0).acos();
-    let (sa, sb) = (((1.0 - u) * theta).sin(), (u * theta).sin());
-    let s = theta.sin();
+    let theta = crate::portable::acos(dot.clamp(-1.0, 1.0));
+    let (sa, sb) = (
+        crate::portable::sin((1.0 - u) * theta),
+        crate::portable::sin(u * theta),
+    );
+    let s = crate::portable::sin(theta);
     std::array::from_fn(|k| (sa * a[k] + sb * b[k]) / s)
 }
 

@@ -194,7 +194,12 @@ impl DmpApp {
         let rows: Vec<_> = session
             .table_rows()
             .iter()
-            .map(|r| serde_json::json!({"name": r.name, "dm": r.dm, "km": r.km, "j": r.j}))
+            .map(|r| {
+                serde_json::json!({
+                    "name": r.name, "dm": r.dm, "km": r.km, "j": r.j,
+                    "d_rot": r.d_rot, "alpha_peak": r.alpha_peak,
+                })
+            })
             .collect();
         let names: Vec<&str> = session
             .model()

@@ -47,7 +47,7 @@ impl Default for DmpSettings {
     fn default() -> Self {
         Self {
             basis_functions: 100,
-            alpha_x: 100f64.ln(),
+            alpha_x: crate::portable::ln(100.0),
             axis_sd_floor: 0.0,
             skill_mode: crate::skill_error::SkillMode::Frame,
             k_rot: 0.0,
@@ -89,7 +89,7 @@ impl Basis {
         }
         let alpha = settings.alpha_x;
         let centres: Vec<f64> = (0..b)
-            .map(|i| (-alpha * i as f64 / (b - 1) as f64).exp())
+            .map(|i| crate::portable::exp(-alpha * i as f64 / (b - 1) as f64))
             .collect();
         let mut widths: Vec<f64> = centres
             .windows(2)
@@ -97,7 +97,10 @@ impl Basis {
             .collect();
         widths.push(widths[b - 2]);
         let s = crate::prepare::linspace(1.0, n);
-        let x: Vec<f64> = s.iter().map(|s| (-alpha * s).exp()).collect();
+        let x: Vec<f64> = s
+            .iter()
+            .map(|&s| crate::portable::exp(-alpha * s))
+            .collect();
         let mut psi = Vec::with_capacity(n * b);
         let mut psi_sum = Vec::with_capacity(n);
         for &xk in &x {
@@ -106,7 +109,7 @@ impl Basis {
                 centres
                     .iter()
                     .zip(&widths)
-                    .map(|(c, h)| (-h * (xk - c) * (xk - c)).exp()),
+                    .map(|(c, h)| crate::portable::exp(-h * (xk - c) * (xk - c))),
             );
             psi_sum.push(psi[row_start..].iter().sum());
         }
