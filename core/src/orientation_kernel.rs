@@ -32,9 +32,10 @@
 //! and longer while `|u|^2 <= 2.5e-3` (truncation below 3e-16). Where an
 //! argument leaves that range (a rotation to go of more than 180 degrees,
 //! `|w| dt / 2` over 0.05 rad, an angular step over 0.1 rad) the lane takes
-//! `atan2`, `sin` and `cos` of `crate::portable` (the `libm` crate). Plain multiplications
-//! and additions, no fused multiply-add, and the same `libm` natively and
-//! in the browser: the browser's build gives the same bits.
+//! `atan2`, `sin` and `cos` of `crate::portable` (the `libm` crate). Plain
+//! multiplications and additions, no fused multiply-add, and the same
+//! `libm` natively and in the browser: the browser's build gives the same
+//! bits.
 
 use crate::dmp::Projections;
 use crate::orientation::{OrientationRollout, PreparedOrientation};

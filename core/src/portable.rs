@@ -4,7 +4,9 @@
 //! functions differ (glibc natively, compiler-builtins' port in
 //! WebAssembly), now and then in the last bit. With these and only
 //! `+ - * / sqrt`, which IEEE 754 fixes, a computation gives the same
-//! numbers natively and in the browser.
+//! numbers natively and in the browser. The GUI's drawing (colour scales,
+//! ticks, the 3D grid) keeps the platform's functions: it changes no
+//! number a user reads or exports.
 //!
 //! A last bit matters. The orientation's error angle `2 acos(|q . q_raw|)`
 //! of a small error reads `1 - |q . q_raw|`, so a rounding of the dot

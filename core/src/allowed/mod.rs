@@ -135,7 +135,8 @@ impl Acceptable {
 
 /// A number with about four significant digits.
 pub fn num(v: f64) -> String {
-    let digits = (3 - v.abs().max(1e-300).log10().floor() as i32).clamp(0, 6) as usize;
+    let digits =
+        (3 - crate::portable::log10(v.abs().max(1e-300)).floor() as i32).clamp(0, 6) as usize;
     format!("{v:.digits$}")
 }
 

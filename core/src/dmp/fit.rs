@@ -136,10 +136,11 @@ impl Projections {
                 f[k][t / 3][t % 3] = v;
             }
         }
-        let mut fitted = fitted.into_iter();
-        let weights =
-            std::array::from_fn(|_| std::array::from_fn(|_| fitted.next().unwrap_or_default()));
-        Self { f, weights }
+        let [a0, a1, a2, b0, b1, b2, c0, c1, c2] = fitted;
+        Self {
+            f,
+            weights: [[a0, a1, a2], [b0, b1, b2], [c0, c1, c2]],
+        }
     }
 
     /// The LWR weights of one axis at gains `(dm, km)`.
