@@ -7,8 +7,7 @@
 // to web/tests/out/figures.json with the screenshot.
 //
 // Usage: web/build.sh --testing && (cd web/tests && npm ci && node browser.mjs)
-import { chromium } from "playwright-core";
-import { serve } from "./serve.mjs";
+import { serve, launch, chromiumPath } from "./serve.mjs";
 import { readFile, mkdtemp, mkdir, writeFile, rm } from "node:fs/promises";
 import { existsSync } from "node:fs";
 import { tmpdir } from "node:os";
@@ -20,7 +19,6 @@ import { execFileSync } from "node:child_process";
 const here = dirname(fileURLToPath(import.meta.url));
 const dist = join(here, "..", "dist");
 const out = join(here, "out");
-const chromiumPath = process.env.CHROMIUM ?? "/usr/bin/chromium";
 function fail(message) {
   console.error(`FAIL: ${message}`);
   process.exitCode = 1;
@@ -37,13 +35,7 @@ if (!existsSync(chromiumPath)) fail(`no Chromium at ${chromiumPath}: apt install
 const { server, url } = await serve(dist);
 
 const profile = await mkdtemp(join(tmpdir(), "dmpscope-chromium-"));
-const context = await chromium.launchPersistentContext(profile, {
-  executablePath: chromiumPath,
-  headless: true,
-  viewport: { width: 1280, height: 800 },
-  args: ["--no-sandbox", "--disable-background-networking", "--disable-component-update",
-    "--disable-sync", "--disable-quic", "--no-first-run"],
-});
+const context = await launch(profile);
 const figures = {};
 try {
   const page = context.pages()[0] ?? (await context.newPage());

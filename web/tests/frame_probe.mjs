@@ -12,8 +12,7 @@
 // trace's events there (and skips the parts).
 //
 // Usage: web/build.sh --testing && (cd web/tests && node frame_probe.mjs)
-import { chromium } from "playwright-core";
-import { serve } from "./serve.mjs";
+import { serve, launch } from "./serve.mjs";
 import { mkdtemp, rm } from "node:fs/promises";
 import { tmpdir } from "node:os";
 import { join, dirname } from "node:path";
@@ -22,12 +21,7 @@ import { fileURLToPath } from "node:url";
 const here = dirname(fileURLToPath(import.meta.url));
 const { server, url } = await serve(join(here, "..", "dist"));
 const profile = await mkdtemp(join(tmpdir(), "dmpscope-probe-"));
-const context = await chromium.launchPersistentContext(profile, {
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-  headless: true,
-  viewport: { width: 1280, height: 800 },
-  args: ["--no-sandbox", "--disable-background-networking", "--disable-component-update", "--disable-sync", "--no-first-run"],
-});
+const context = await launch(profile);
 try {
   const page = context.pages()[0] ?? (await context.newPage());
   const state = () => page.evaluate(() => (window.dmpscope_state ? JSON.parse(window.dmpscope_state()) : null));

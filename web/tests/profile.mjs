@@ -6,8 +6,7 @@
 // shorter than GAP_MS, default 4, joined; IDLE lists the profiler's nodes
 // counted as idle, default "(idle),(program),(garbage collector)") and, for
 // stretch PICK (default 0, the longest), self time and stacks DEPTH deep.
-import { chromium } from "playwright-core";
-import { serve } from "./serve.mjs";
+import { serve, launch } from "./serve.mjs";
 import { mkdtemp } from "node:fs/promises";
 import { tmpdir } from "node:os";
 import { join, dirname } from "node:path";
@@ -17,13 +16,7 @@ const here = dirname(fileURLToPath(import.meta.url));
 const dist = join(here, "..", "dist");
 const { server, url } = await serve(dist);
 const profileDir = await mkdtemp(join(tmpdir(), "dmpscope-profile-"));
-const context = await chromium.launchPersistentContext(profileDir, {
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-  headless: true,
-  viewport: { width: 1280, height: 800 },
-  args: ["--no-sandbox", "--disable-background-networking", "--disable-component-update",
-    "--disable-sync", "--disable-quic", "--no-first-run"],
-});
+const context = await launch(profileDir);
 const page = context.pages()[0] ?? (await context.newPage());
 const cdp = await context.newCDPSession(page);
 await cdp.send("Profiler.enable");

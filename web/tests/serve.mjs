@@ -1,5 +1,8 @@
 // Serves web/dist on 127.0.0.1 for the browser scripts (browser.mjs, the
-// tests; profile.mjs, the profiler): `const { server, url } = await serve(dist)`.
+// tests; profile.mjs, trace.mjs, frame_probe.mjs and slow_frame.mjs, the
+// tools): `const { server, url } = await serve(dist)`; and starts the
+// headless Chromium they all drive: `const context = await launch(dir)`.
+import { chromium } from "playwright-core";
 import { createServer } from "node:http";
 import { readFile } from "node:fs/promises";
 import { join, extname } from "node:path";
@@ -23,4 +26,20 @@ export async function serve(dist) {
   });
   await new Promise((r) => server.listen(0, "127.0.0.1", r));
   return { server, url: `http://127.0.0.1:${server.address().port}/` };
+}
+
+// The Chromium the scripts drive: Debian's, unless CHROMIUM names another.
+export const chromiumPath = process.env.CHROMIUM ?? "/usr/bin/chromium";
+
+// That Chromium, headless, 1280 x 800, with a fresh profile in
+// `profileDir` and no background traffic; `extraArgs` are added to its
+// command line.
+export function launch(profileDir, extraArgs = []) {
+  return chromium.launchPersistentContext(profileDir, {
+    executablePath: chromiumPath,
+    headless: true,
+    viewport: { width: 1280, height: 800 },
+    args: ["--no-sandbox", "--disable-background-networking", "--disable-component-update",
+      "--disable-sync", "--disable-quic", "--no-first-run", ...extraArgs],
+  });
 }

@@ -14,8 +14,7 @@
 // HIDE=mask leaves parts of the window out from the first frame
 // (window.dmpscope_hide's bits, app/src/gui/app.rs `part`); JSFLAGS passes
 // V8 flags (e.g. --no-wasm-lazy-compilation); DEPTH sets the stacks' depth.
-import { chromium } from "playwright-core";
-import { serve } from "./serve.mjs";
+import { serve, launch } from "./serve.mjs";
 import { mkdtemp, rm } from "node:fs/promises";
 import { tmpdir } from "node:os";
 import { join, dirname } from "node:path";
@@ -24,14 +23,7 @@ import { fileURLToPath } from "node:url";
 const here = dirname(fileURLToPath(import.meta.url));
 const { server, url } = await serve(join(here, "..", "dist"));
 const profileDir = await mkdtemp(join(tmpdir(), "dmpscope-slow-frame-"));
-const context = await chromium.launchPersistentContext(profileDir, {
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-  headless: true,
-  viewport: { width: 1280, height: 800 },
-  args: ["--no-sandbox", "--disable-background-networking", "--disable-component-update",
-    "--disable-sync", "--no-first-run",
-    ...(process.env.JSFLAGS ? [`--js-flags=${process.env.JSFLAGS}`] : [])],
-});
+const context = await launch(profileDir, process.env.JSFLAGS ? [`--js-flags=${process.env.JSFLAGS}`] : []);
 try {
   const page = context.pages()[0] ?? (await context.newPage());
 

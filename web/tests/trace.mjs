@@ -5,8 +5,7 @@
 // `web/build.sh --testing && (cd web/tests && node trace.mjs)`; MIN_MS
 // (default 30) is the shortest event listed, ALL=1 lists every event name,
 // not only the WebGL flushes, read-backs and frames.
-import { chromium } from "playwright-core";
-import { serve } from "./serve.mjs";
+import { serve, launch } from "./serve.mjs";
 import { mkdtemp } from "node:fs/promises";
 import { tmpdir } from "node:os";
 import { join, dirname } from "node:path";
@@ -15,10 +14,7 @@ import { fileURLToPath } from "node:url";
 const here = dirname(fileURLToPath(import.meta.url));
 const { server, url } = await serve(join(here, "..", "dist"));
 const profile = await mkdtemp(join(tmpdir(), "trace-"));
-const context = await chromium.launchPersistentContext(profile, {
-  executablePath: "/usr/bin/chromium", headless: true, viewport: { width: 1280, height: 800 },
-  args: ["--no-sandbox", "--disable-background-networking", "--disable-component-update", "--disable-sync", "--disable-quic", "--no-first-run"],
-});
+const context = await launch(profile);
 const page = context.pages()[0] ?? (await context.newPage());
 const cdp = await context.newCDPSession(page);
 const events = [];
