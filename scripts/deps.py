@@ -52,6 +52,7 @@ def strip(text: str) -> str:
 
 def expand(tree: str) -> list[tuple[list[str], str]]:
     """`a::{b, c::{d as e}}` -> [(['a','b'], 'b'), (['a','c','d'], 'e')]."""
+    tree = re.sub(r"\s+as\s+", "@", tree)
     tree = re.sub(r"\s+", "", tree)
     out: list[tuple[list[str], str]] = []
 
@@ -77,10 +78,8 @@ def expand(tree: str) -> list[tuple[list[str], str]]:
                 walk(prefix + head_segs, rest[: rest.rfind("}")])
                 continue
             alias = None
-            if "as" in part and re.search(r"[\w]as[A-Za-z_]", part):
-                m = re.match(r"(.*?)as([A-Za-z_]\w*)$", part)
-                if m and not m.group(1).endswith(":"):
-                    part, alias = m.group(1), m.group(2)
+            if "@" in part:
+                part, alias = part.split("@", 1)
             segs = prefix + [x for x in part.split("::") if x]
             if segs and segs[-1] == "self":
                 segs = segs[:-1]

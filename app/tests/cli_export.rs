@@ -8,7 +8,7 @@ mod support;
 
 use std::process::Command;
 
-use dmpscope_core::io::ros_traj::{MULTI_DOF_NAME, PATH_NAME, decode_multi_dof, decode_path};
+use dmpscope_core::export::ros_traj::{MULTI_DOF_NAME, PATH_NAME, decode_multi_dof, decode_path};
 use serde_json::Value;
 use support::{dmpscope, repo, text};
 

@@ -160,8 +160,8 @@ fn a_bad_csv_row_is_named() {
 /// Two reaches of the sample generator written as one topic, the second's
 /// clock `shift_ns` after (negative: before) the first's end.
 fn two_reaches_on_one_topic(name: &str, shift_ns: i64) -> String {
-    use dmpscope_core::io::write::{TopicSamples, write_pose_stamped};
-    let demos = dmpscope_core::synth::reach_demos(3, 2, 1_700_000_000_000_000_000);
+    use dmpscope_core::export::write::{TopicSamples, write_pose_stamped};
+    let demos = dmpscope_core::synth::vive::reach_demos(3, 2, 1_700_000_000_000_000_000);
     let first = &demos[0].samples;
     let end = first.last().expect("samples").0;
     let start = demos[1].samples[0].0;

@@ -121,9 +121,9 @@ fn a_click_on_the_pareto_front_moves_the_operating_point_onto_it() {
     assert_ne!(op, before, "the click moved the operating point");
     let shown = h.state().session().shown().expect("landscape");
     let l = &shown.snapshot.landscape;
-    let front = dmpscope_core::diagnostics::pareto_front(
-        shown.values(dmpscope_core::Quantity::DSum),
-        shown.values(dmpscope_core::Quantity::S),
+    let front = dmpscope_core::extract::diagnostics::pareto::pareto_front(
+        shown.values(dmpscope_core::landscape::quantity::Quantity::DSum),
+        shown.values(dmpscope_core::landscape::quantity::Quantity::S),
     );
     let n_km = shown.grid().km.n;
     assert!(

@@ -40,7 +40,7 @@ fn the_orientation_is_drawn_plotted_mapped_and_tabled() {
     let nan_map = |h: &Harness<'_, DmpApp>| {
         let shown = h.state().session().shown().expect("landscape");
         shown
-            .values(dmpscope_core::Quantity::DRotSum)
+            .values(dmpscope_core::landscape::quantity::Quantity::DRotSum)
             .iter()
             .all(|v| v.is_nan())
     };

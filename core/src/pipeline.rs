@@ -4,12 +4,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::demo::RawDemo;
-use crate::dmp::DmpSettings;
 use crate::error::{Error, Result};
-use crate::model::Model;
+use crate::fit::settings::DmpSettings;
+use crate::landscape::model::Model;
+use crate::load::demo::RawDemo;
 use crate::notice::Notice;
-use crate::prepare::{PrepSettings, PreparedDemo, prepare};
+use crate::prepare::demo::{PrepSettings, PreparedDemo, prepare};
 
 /// What to do with a demonstration that cannot be prepared (too few samples,
 /// a non-finite value, stamps that ask for too many points). There is no

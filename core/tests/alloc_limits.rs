@@ -11,8 +11,8 @@ use std::time::Instant;
 
 use common::{first_chunk, load, mcap_of, raw_mcap, reach, records};
 use dmpscope_core::Result;
-use dmpscope_core::io::Loaded;
-use dmpscope_core::io::mcap_file::RECORD_LENGTH_LIMIT;
+use dmpscope_core::load::mcap::Loaded;
+use dmpscope_core::load::mcap::RECORD_LENGTH_LIMIT;
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 
 #[global_allocator]

@@ -12,8 +12,8 @@ use common::{
     EPOCH, Sample, first_chunk, load, load_err, mcap_of, mcap_of_chunked, pose_mcap, raw_demo,
     raw_mcap, reach,
 };
-use dmpscope_core::io::ros2::encode_pose_stamped;
-use dmpscope_core::synth::Rng;
+use dmpscope_core::load::decode::ros2::encode_pose_stamped;
+use dmpscope_core::rng::Rng;
 use dmpscope_core::{Error, PrepSettings, RawDemo, TimeSource, prepare};
 
 // ---------------------------------------------------------------- helpers

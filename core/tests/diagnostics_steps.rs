@@ -7,9 +7,9 @@ mod golden_data;
 
 use std::sync::Arc;
 
-use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
 use dmpscope_core::extract;
-use dmpscope_core::landscape::{Axis, AxisScale, FillOrder, Grid, LandscapeJob};
+use dmpscope_core::extract::diagnostics::{DiagSettings, DiagnosticsJob};
+use dmpscope_core::landscape::grid::{Axis, AxisScale, FillOrder, Grid, LandscapeJob};
 
 fn job() -> DiagnosticsJob {
     let model = Arc::new(golden_data::model());
@@ -87,7 +87,7 @@ fn parts_computed_elsewhere_in_any_order_give_the_same_diagnostics() {
     // Answers in reverse order; a second answer for a part is refused.
     parts.reverse();
     for part in &parts {
-        let found = dmpscope_core::diagnostics::optimum_of(&model, &part.indices, grid, k).ok();
+        let found = extract::diagnostics::resample::optimum_of(&model, &part.indices, grid, k).ok();
         assert!(handed.put_part(part.id, found));
         assert!(!handed.put_part(part.id, found), "an answer given twice");
     }

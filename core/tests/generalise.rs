@@ -3,7 +3,7 @@
 
 mod golden_data;
 
-use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::geom::Vec3;
 use dmpscope_core::{
     Model, PrepSettings, Primitive, RawDemo, Scaling, Skill, Target, TimeSource, Unusable,
@@ -275,7 +275,7 @@ fn per_axis_scaling_warns_about_an_axis_that_barely_moves() {
 
 #[test]
 fn an_export_never_holds_nan() {
-    use dmpscope_core::io::dmp_doc::{DocContext, dmp_document};
+    use dmpscope_core::export::dmp_doc::{DocContext, dmp_document};
     let m = model();
     // Gains so large that the integration overflows: refused, so no export
     // (JSON, CSV or MCAP) and no view ever gets its numbers.
@@ -296,7 +296,7 @@ fn an_export_never_holds_nan() {
         frame_id: "world".into(),
         band: None,
         scaling: Scaling::Paper,
-        recorded_units: dmpscope_core::units::Units::M,
+        recorded_units: dmpscope_core::load::units::Units::M,
     };
     let err = dmp_document(&p, &out, ctx())
         .expect_err("refused")

@@ -6,9 +6,10 @@ mod golden_data;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::landscape::{Axis, AxisScale, Grid};
-use dmpscope_core::{Model, PrepSettings, extract, landscape, prepare};
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::landscape::grid::compute;
+use dmpscope_core::landscape::grid::{Axis, AxisScale, Grid};
+use dmpscope_core::{Model, PrepSettings, extract, prepare};
 use golden_data::{close, f, fs, golden, model, raw_demos};
 use serde_json::Value;
 
@@ -131,8 +132,8 @@ fn landscape_and_optimum_match_reference() {
         km: axis(&ls["km_axis"]),
     };
     let m = Arc::new(model());
-    let land = landscape::compute(m.clone(), grid, &AtomicBool::new(false), &mut |_, _| {})
-        .expect("landscape");
+    let land =
+        compute(m.clone(), grid, &AtomicBool::new(false), &mut |_, _| {}).expect("landscape");
     for (ours, golden) in land.dm.iter().zip(fs(&ls["dm_axis"])) {
         close(*ours, golden, 1e-14, "dm axis");
     }

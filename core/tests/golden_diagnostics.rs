@@ -12,9 +12,12 @@ mod golden_data;
 
 use std::sync::Arc;
 
-use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob, depth, percentiles};
-use dmpscope_core::landscape::{Axis, AxisScale, FillOrder, Grid, LandscapeJob};
-use dmpscope_core::{extract, report::TableRow};
+use dmpscope_core::extract;
+use dmpscope_core::extract::diagnostics::balance::depth;
+use dmpscope_core::extract::diagnostics::resample::percentiles;
+use dmpscope_core::extract::diagnostics::{DiagSettings, DiagnosticsJob};
+use dmpscope_core::landscape::grid::{Axis, AxisScale, FillOrder, Grid, LandscapeJob};
+use dmpscope_core::report::summary::TableRow;
 use golden_data::{close, f, fs, golden, model};
 
 const EXACT: f64 = 1e-9;

@@ -17,8 +17,9 @@
 
 mod golden_data;
 
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::rotation::{self, Q};
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::rotation;
+use dmpscope_core::rotation::Q;
 use dmpscope_core::{Model, PrepSettings, prepare};
 use golden_data::{fs, golden};
 use serde_json::Value;

@@ -17,8 +17,10 @@ mod golden_data;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use dmpscope_core::landscape::{self, Axis, AxisScale, Grid};
-use dmpscope_core::rotation::{self, Q};
+use dmpscope_core::landscape::grid;
+use dmpscope_core::landscape::grid::{Axis, AxisScale, Grid};
+use dmpscope_core::rotation;
+use dmpscope_core::rotation::Q;
 use dmpscope_core::{Model, PrepSettings, Quantity, Unusable, build_model};
 use golden_data::{close, f, fs, golden};
 use serde_json::Value;
@@ -157,7 +159,7 @@ fn the_d_rot_map_matches_the_reference() {
         dm: axis(dm.len()),
         km: axis(km.len()),
     };
-    let land = landscape::compute(
+    let land = grid::compute(
         Arc::new(model()),
         grid,
         &AtomicBool::new(false),

@@ -9,9 +9,10 @@ mod golden_data;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use dmpscope_core::allowed::{Allowed, PickSettings, e_depth};
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::landscape::{self, Axis, AxisScale, Grid};
+use dmpscope_core::extract::allowed::{Allowed, PickSettings, e_depth};
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::landscape::grid;
+use dmpscope_core::landscape::grid::{Axis, AxisScale, Grid};
 use dmpscope_core::{Model, PrepSettings, Quantity, RawDemo, SkillMode, extract, prepare};
 use golden_data::{close, f, fs, golden, raw_demos};
 use serde_json::Value;
@@ -53,7 +54,7 @@ fn check_set(name: &str, raw: &[RawDemo], exp: &Value) {
     for mode in SkillMode::ALL {
         let m = model(raw, mode);
         let e = &exp["modes"][mode.name()];
-        let land = landscape::compute(
+        let land = grid::compute(
             Arc::clone(&m),
             grid,
             &AtomicBool::new(false),

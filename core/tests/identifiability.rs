@@ -10,10 +10,11 @@ mod common;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use dmpscope_core::allowed::{Allowed, PickRule, PickSettings, e_depth};
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::landscape::{self, Axis, AxisScale, Grid, Landscape};
-use dmpscope_core::planted::PlantedSpec;
+use dmpscope_core::extract::allowed::{Allowed, PickRule, PickSettings, e_depth};
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::landscape::grid;
+use dmpscope_core::landscape::grid::{Axis, AxisScale, Grid, Landscape};
+use dmpscope_core::synth::planted::PlantedSpec;
 use dmpscope_core::{
     Model, PrepSettings, Quantity, RawDemo, Scaling, SkillMode, Unusable, build_model, extract,
 };
@@ -48,7 +49,7 @@ fn landscape_of(raw: &[RawDemo], mode: SkillMode, n: usize) -> (Arc<Model>, Land
     let built =
         build_model(raw, &PrepSettings::default(), settings, Unusable::Fail).expect("model");
     let model = Arc::new(built.model);
-    let land = landscape::compute(
+    let land = grid::compute(
         Arc::clone(&model),
         grid(n),
         &AtomicBool::new(false),

@@ -13,9 +13,10 @@ mod common;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::kernel_dispatch::{instruction_set, set_avx512};
-use dmpscope_core::landscape::{self, Axis, AxisScale, Grid};
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::kernels::dispatch::{instruction_set, set_avx512};
+use dmpscope_core::landscape::grid;
+use dmpscope_core::landscape::grid::{Axis, AxisScale, Grid};
 use dmpscope_core::{Model, PrepSettings, Quantity, Unusable, build_model};
 
 fn model() -> Model {
@@ -43,8 +44,7 @@ fn fingerprint(model: &Arc<Model>) -> Vec<u64> {
     };
     let grid = Grid { dm: axis, km: axis };
     let cancel = AtomicBool::new(false);
-    let land =
-        landscape::compute(model.clone(), grid, &cancel, &mut |_, _| {}).expect("a landscape");
+    let land = grid::compute(model.clone(), grid, &cancel, &mut |_, _| {}).expect("a landscape");
     // Every quantity is there to compare: d_rot too, finite at most points.
     let finite = land
         .values(Quantity::DRotSum)

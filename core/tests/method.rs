@@ -10,10 +10,13 @@ use common::{close, max_abs};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use dmpscope_core::dmp::{Basis, DmpSettings, fit_weights, forcing_from_weights};
-use dmpscope_core::landscape::{self, Axis, AxisScale, FillOrder, Grid};
-use dmpscope_core::presets::preset;
-use dmpscope_core::synth;
+use dmpscope_core::fit::basis::Basis;
+use dmpscope_core::fit::lwr::{fit_weights, forcing_from_weights};
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::landscape::grid;
+use dmpscope_core::landscape::grid::{Axis, AxisScale, FillOrder, Grid};
+use dmpscope_core::report::presets::preset;
+use dmpscope_core::synth::vive;
 use dmpscope_core::{
     Error, Landscape, LandscapeJob, Model, PAPER_PRESETS, PrepSettings, PreparedDemo, RawDemo,
     extract, prepare,
@@ -22,7 +25,7 @@ use dmpscope_core::{
 // ---------------------------------------------------------------- helpers
 
 fn reach_raw(seed: u64, count: usize) -> Vec<RawDemo> {
-    synth::reach_raw_demos(seed, count, 1_700_000_000_000_000_000)
+    vive::reach_raw_demos(seed, count, 1_700_000_000_000_000_000)
 }
 
 fn model_of(raws: &[RawDemo]) -> Model {
@@ -57,7 +60,7 @@ fn inside(v: f64, a: &Axis, slack: f64) -> bool {
 }
 
 fn compute(m: &Arc<Model>, grid: Grid) -> Landscape {
-    landscape::compute(m.clone(), grid, &AtomicBool::new(false), &mut |_, _| {}).expect("landscape")
+    grid::compute(m.clone(), grid, &AtomicBool::new(false), &mut |_, _| {}).expect("landscape")
 }
 
 const D0: f64 = 6.0;
@@ -566,7 +569,7 @@ fn paper_presets_have_the_table_names_gains_and_zeta() {
     let m = model_of(&reach_raw(3, 2));
     for (p, (name, dm, km, zeta)) in PAPER_PRESETS.iter().zip(table) {
         assert_eq!((p.name, p.dm, p.km), (name, dm, km));
-        let z = dmpscope_core::model::zeta(p.dm, p.km);
+        let z = dmpscope_core::landscape::model::zeta(p.dm, p.km);
         assert_eq!(z, dm / (2.0 * km.sqrt()));
         assert_eq!(format!("{z:.2}"), zeta, "{name}");
         assert_eq!(m.evaluate(p.dm, p.km).zeta, z);

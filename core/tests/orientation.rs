@@ -9,10 +9,11 @@ use std::f64::consts::FRAC_PI_2;
 use std::io::Cursor;
 
 use dmpscope_core::geom::{Quat, Vec3, quat_from_xyzw, xyzw};
-use dmpscope_core::io::csv::load_csv;
-use dmpscope_core::io::mcap_file::UpAxis;
-use dmpscope_core::io::ros2::StampedTransform;
-use dmpscope_core::io::{LoadOptions, load_bytes, load_bytes_with, ros1, ros2};
+use dmpscope_core::load::csv::load_csv;
+use dmpscope_core::load::decode::ros2::StampedTransform;
+use dmpscope_core::load::decode::{ros1, ros2};
+use dmpscope_core::load::mcap::UpAxis;
+use dmpscope_core::load::mcap::{LoadOptions, load_bytes, load_bytes_with};
 use dmpscope_core::{RawDemo, TimeSource};
 use mcap::records::MessageHeader;
 
@@ -362,9 +363,9 @@ fn sorting_and_cutting_keep_each_orientation_with_its_sample() {
 
 #[test]
 fn foxglove_poses_hand_on_their_orientation() {
-    use dmpscope_core::io::foxglove_schemas::{
-        EncodedTopic, FoxgloveEncoding, FoxgloveSchema, encode_pose_in_frame_json,
-        encode_pose_in_frame_proto, write_encoded,
+    use dmpscope_core::load::decode::foxglove_json::encode_pose_in_frame_json;
+    use dmpscope_core::load::decode::foxglove_schemas::{
+        EncodedTopic, FoxgloveEncoding, FoxgloveSchema, encode_pose_in_frame_proto, write_encoded,
     };
     for encoding in [FoxgloveEncoding::Protobuf, FoxgloveEncoding::Json] {
         let messages: Vec<(i64, Vec<u8>)> = (0..N)

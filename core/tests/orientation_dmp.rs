@@ -4,9 +4,10 @@
 
 mod common;
 
-use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::geom::{Vec3, quat_from_xyzw};
-use dmpscope_core::rotation::{self, Q};
+use dmpscope_core::rotation;
+use dmpscope_core::rotation::Q;
 use dmpscope_core::{Model, PrepSettings, RawDemo, TimeSource, prepare};
 
 /// A reach whose orientation turns by `angle` about `axis` with a
@@ -119,7 +120,7 @@ fn quaternion_sign_flips_change_nothing() {
 }
 
 fn planted_raw() -> Vec<RawDemo> {
-    let spec = dmpscope_core::planted::PlantedSpec {
+    let spec = dmpscope_core::synth::planted::PlantedSpec {
         dm: 10.73,
         km: 20.71,
         noise_m: 1e-4,

@@ -2,7 +2,8 @@
 //! user can name: bytes, a CSV, a folder, a rosbag2 `metadata.yaml`.
 
 use dmpscope_core::geom::Vec3;
-use dmpscope_core::io::{LoadOptions, SourceData, UpAxis, load_source};
+use dmpscope_core::load::mcap::{LoadOptions, UpAxis};
+use dmpscope_core::load::source::{SourceData, load_source};
 use dmpscope_core::{Error, Level, PrepSettings, RawDemo, TimeSource, Unusable, build_model};
 
 fn sample() -> Vec<RawDemo> {

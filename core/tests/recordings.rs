@@ -9,9 +9,11 @@ use std::collections::BTreeMap;
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
-use dmpscope_core::arrange::{StreamStatus, unique_names};
-use dmpscope_core::io::ros2::{self, StampedTransform};
-use dmpscope_core::io::{LoadOptions, SourceData, load_source};
+use dmpscope_core::arrange::streams::{StreamStatus, unique_names};
+use dmpscope_core::load::decode::ros2;
+use dmpscope_core::load::decode::ros2::StampedTransform;
+use dmpscope_core::load::mcap::LoadOptions;
+use dmpscope_core::load::source::{SourceData, load_source};
 use dmpscope_core::{Level, RawDemo};
 use mcap::records::MessageHeader;
 
@@ -129,7 +131,7 @@ fn tmp(name: &str) -> PathBuf {
     dir
 }
 
-fn load(path: &Path) -> dmpscope_core::io::SourceDemos {
+fn load(path: &Path) -> dmpscope_core::load::source::SourceDemos {
     let name = path.display().to_string();
     load_source(&name, SourceData::Path(path), &LoadOptions::default()).expect("loads")
 }
@@ -297,7 +299,7 @@ fn a_tf_bag_keeps_the_tracker_and_says_why_each_other_stream_is_skipped() {
         &loaded.demos,
         &Default::default(),
         Default::default(),
-        dmpscope_core::Unusable::Skip,
+        dmpscope_core::pipeline::Unusable::Skip,
     )
     .expect("one usable demo");
     assert_eq!(built.model.demos().len(), 1);
@@ -311,11 +313,11 @@ fn a_tf_bag_keeps_the_tracker_and_says_why_each_other_stream_is_skipped() {
     );
     // --topic / --exclude choose; per file takes the stream that moves most.
     let options = LoadOptions {
-        streams: dmpscope_core::arrange::StreamFilter {
+        streams: dmpscope_core::arrange::streams::StreamFilter {
             exclude: vec!["/abort*".into()],
             ..Default::default()
         },
-        demos: dmpscope_core::group::Grouping::PerFile,
+        demos: dmpscope_core::arrange::group::Grouping::PerFile,
         ..Default::default()
     };
     let loaded = load_source("tf.mcap", SourceData::Bytes(&tf_bag()), &options).expect("loads");
@@ -411,7 +413,7 @@ fn a_truncated_file_names_the_streams_it_cut_short() {
 
 #[test]
 fn an_export_loads_back_as_the_same_demos_names_included() {
-    use dmpscope_core::io::export::{regenerated_paths, write_pose_in_frame_json};
+    use dmpscope_core::export::recording::{regenerated_paths, write_pose_in_frame_json};
     // Non-ASCII topics, and two names that reduce to one topic segment.
     let topics = ["/左手", "/右手", "/hand.1", "/hand_1"];
     let channels: Vec<Chan> = topics
@@ -430,7 +432,7 @@ fn an_export_loads_back_as_the_same_demos_names_included() {
         &loaded.demos,
         &Default::default(),
         Default::default(),
-        dmpscope_core::Unusable::Fail,
+        dmpscope_core::pipeline::Unusable::Fail,
     )
     .expect("model");
     let firsts: Vec<i64> = loaded.demos.iter().map(|d| d.stamps_ns[0]).collect();
@@ -548,8 +550,8 @@ fn a_fixed_frame_composes_tf_and_tf_static_into_one_frame() {
 
 #[test]
 fn a_fixed_frame_composes_foxglove_frame_transforms_too() {
-    use dmpscope_core::io::foxglove_json::{encode_frame_transforms_json, json_schema};
-    use dmpscope_core::io::foxglove_schemas::{FoxgloveSchema, Transform};
+    use dmpscope_core::load::decode::foxglove_json::{encode_frame_transforms_json, json_schema};
+    use dmpscope_core::load::decode::foxglove_schemas::{FoxgloveSchema, Transform};
     let mut w = mcap::WriteOptions::new()
         .create(Cursor::new(Vec::new()))
         .expect("writer");

@@ -8,10 +8,10 @@ mod common;
 
 use std::sync::Arc;
 
-use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::landscape::{FillOrder, Grid, LandscapeJob};
-use dmpscope_core::planted::PlantedSpec;
+use dmpscope_core::extract::diagnostics::{DiagSettings, DiagnosticsJob};
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::landscape::grid::{FillOrder, Grid, LandscapeJob};
+use dmpscope_core::synth::planted::PlantedSpec;
 use dmpscope_core::{Extraction, Model, PrepSettings, RawDemo, Unusable, build_model, extract};
 
 /// The model, its extraction and the cheap diagnostics (no resampling).
@@ -20,7 +20,7 @@ fn diagnose(
 ) -> (
     Arc<Model>,
     Extraction,
-    dmpscope_core::diagnostics::Diagnostics,
+    dmpscope_core::extract::diagnostics::Diagnostics,
 ) {
     diagnose_with(demos, DmpSettings::default())
 }
@@ -32,7 +32,7 @@ fn diagnose_with(
 ) -> (
     Arc<Model>,
     Extraction,
-    dmpscope_core::diagnostics::Diagnostics,
+    dmpscope_core::extract::diagnostics::Diagnostics,
 ) {
     let built = build_model(demos, &PrepSettings::default(), dmp, Unusable::Fail).expect("model");
     let model = Arc::new(built.model);

@@ -5,15 +5,18 @@
 //! learner's sanity task (a point mass with a known optimum) that a broken
 //! PPO fails.
 
-use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::geom::Vec3;
-use dmpscope_core::io::load_bytes;
+use dmpscope_core::load::mcap::load_bytes;
 use dmpscope_core::rl::env::{ACT, ActionMode, DmpEnv, EnvOptions, ExploreScale};
 use dmpscope_core::rl::loss::{Batch, actor_loss_grad, critic_loss_grad, log_prob};
 use dmpscope_core::rl::mlp::{Adam, Mlp, clip_grad_norm};
 use dmpscope_core::rl::norm::{ReturnScale, RunningStat};
-use dmpscope_core::rl::{PointMass, PpoConfig, Task, Trainer, diverged};
-use dmpscope_core::synth::Rng;
+use dmpscope_core::rl::outcome::diverged;
+use dmpscope_core::rl::point_mass::PointMass;
+use dmpscope_core::rl::ppo::{PpoConfig, Trainer};
+use dmpscope_core::rl::task::Task;
+use dmpscope_core::rng::Rng;
 use dmpscope_core::{Model, PrepSettings, prepare};
 
 fn model() -> Model {

@@ -8,7 +8,8 @@
 
 use std::path::{Path, PathBuf};
 
-use dmpscope_core::io::{LoadOptions, SourceData, load_source, load_streams};
+use dmpscope_core::load::mcap::LoadOptions;
+use dmpscope_core::load::source::{SourceData, load_source, load_streams};
 use dmpscope_core::{Error, RawDemo};
 
 fn bags() -> PathBuf {
@@ -194,7 +195,7 @@ fn a_compressed_bag_killed_inside_a_chunk_keeps_its_closed_chunks() {
 
 #[test]
 fn a_recording_without_poses_beside_the_bags_is_skipped_and_said() {
-    use dmpscope_core::io::write::{BulkTopic, write_pose_stamped_with_bulk};
+    use dmpscope_core::export::write::{BulkTopic, write_pose_stamped_with_bulk};
     let dir = std::env::temp_dir().join(format!("dmpscope-mixed-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("folder");

@@ -4,8 +4,8 @@
 mod common;
 
 use common::{close, max_abs};
-use dmpscope_core::savgol::SavGol;
-use dmpscope_core::synth::Rng;
+use dmpscope_core::prepare::savgol::SavGol;
+use dmpscope_core::rng::Rng;
 
 /// An exact fraction `n / d` (`d > 0`, lowest terms).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -2,7 +2,7 @@
 //! lines, rounding of stamps, and errors that name the 0-based data row.
 
 use dmpscope_core::error::Location;
-use dmpscope_core::io::csv::load_csv;
+use dmpscope_core::load::csv::load_csv;
 use dmpscope_core::{Error, TimeSource};
 
 #[test]

@@ -9,19 +9,20 @@ use std::collections::BTreeMap;
 use std::io::Cursor;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-use dmpscope_core::io::foxglove_schemas::{
+use dmpscope_core::export::write::{TopicSamples, write_pose_stamped};
+use dmpscope_core::load::decode::foxglove_json::{
+    encode_frame_transform_json, encode_frame_transforms_json, encode_pose_in_frame_json,
+    encode_poses_in_frame_json, json_schema,
+};
+use dmpscope_core::load::decode::foxglove_schemas::{
     EncodedTopic, FoxgloveEncoding, FoxgloveSchema, Transform, descriptor_set,
-    descriptor_set_bytes, encode_frame_transform_json, encode_frame_transform_proto,
-    encode_frame_transforms_json, encode_frame_transforms_proto, encode_pose_in_frame_json,
-    encode_pose_in_frame_proto, encode_poses_in_frame_json, encode_poses_in_frame_proto,
-    json_schema, write_encoded, write_pose_in_frame_json,
+    descriptor_set_bytes, encode_frame_transform_proto, encode_frame_transforms_proto,
+    encode_pose_in_frame_proto, encode_poses_in_frame_proto, write_encoded,
+    write_pose_in_frame_json,
 };
-use dmpscope_core::io::write::{TopicSamples, write_pose_stamped};
-use dmpscope_core::io::{
-    ChannelSchema, LoadOptions, Loaded, MessageDecoder, PoseSample, decoder_for, load_bytes,
-    load_bytes_with,
-};
-use dmpscope_core::synth::Rng;
+use dmpscope_core::load::decode::{ChannelSchema, MessageDecoder, PoseSample, decoder_for};
+use dmpscope_core::load::mcap::{LoadOptions, Loaded, load_bytes, load_bytes_with};
+use dmpscope_core::rng::Rng;
 use dmpscope_core::{Error, RawDemo, TimeSource};
 use mcap::records::MessageHeader;
 use prost_reflect::prost::Message as _;

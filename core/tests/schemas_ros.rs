@@ -11,11 +11,11 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use dmpscope_core::error::Location;
 use dmpscope_core::geom::Vec3;
-use dmpscope_core::io::ros2::StampedTransform;
-use dmpscope_core::io::{
-    ChannelSchema, LoadOptions, Loaded, MessageDecoder, PoseSample, decoder_for, load_bytes,
-    load_bytes_with, ros1, ros2,
+use dmpscope_core::load::decode::ros2::StampedTransform;
+use dmpscope_core::load::decode::{
+    ChannelSchema, MessageDecoder, PoseSample, decoder_for, ros1, ros2,
 };
+use dmpscope_core::load::mcap::{LoadOptions, Loaded, load_bytes, load_bytes_with};
 use dmpscope_core::{Error, TimeSource};
 use mcap::records::MessageHeader;
 

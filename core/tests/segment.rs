@@ -1,9 +1,10 @@
 //! Segmentation of one continuous recording into demonstrations, and the
 //! other groupings (per topic, per file).
 
-use dmpscope_core::group::{Grouping, group};
-use dmpscope_core::segment::{SegmentSettings, find_segments, split};
-use dmpscope_core::synth::{Rng, reach_demos};
+use dmpscope_core::arrange::group::{Grouping, group};
+use dmpscope_core::arrange::segment::{SegmentSettings, find_segments, split};
+use dmpscope_core::rng::Rng;
+use dmpscope_core::synth::vive::reach_demos;
 use dmpscope_core::{RawDemo, TimeSource};
 
 /// One take: `count` reaches back and forth with `rest_s` of rest (with

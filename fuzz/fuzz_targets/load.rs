@@ -2,7 +2,7 @@
 //! bytes must give demos or an error, never a panic, a hang or an abort.
 #![no_main]
 
-use dmpscope_core::io::load_bytes;
+use dmpscope_core::load::mcap::load_bytes;
 use dmpscope_core::{PrepSettings, prepare};
 use libfuzzer_sys::fuzz_target;
 

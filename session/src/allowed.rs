@@ -3,7 +3,7 @@
 //! from the complete landscape and the extraction whenever either, the
 //! pick rule, the region's eps or the a_peak limit changes.
 
-use dmpscope_core::allowed::{Allowed, PickSettings};
+use dmpscope_core::extract::allowed::{Allowed, PickSettings};
 use dmpscope_core::{Level, PointEval};
 
 use crate::jobs::Once;
@@ -15,7 +15,7 @@ use crate::{Session, Settings};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct AllowedKey {
     pub(crate) extraction: ExtractionKey,
-    pub(crate) rule: Option<dmpscope_core::allowed::PickRule>,
+    pub(crate) rule: Option<dmpscope_core::extract::allowed::PickRule>,
     pub(crate) eps: u64,
     pub(crate) limit: Option<u64>,
 }
@@ -52,7 +52,7 @@ impl Session {
         let eps = if settings.accept_eps.is_finite() && settings.accept_eps > 0.0 {
             settings.accept_eps
         } else {
-            dmpscope_core::allowed::DEFAULT_EPS
+            dmpscope_core::extract::allowed::DEFAULT_EPS
         };
         let key = AllowedKey {
             extraction,

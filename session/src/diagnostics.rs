@@ -8,10 +8,9 @@
 
 use std::sync::Arc;
 
-use dmpscope_core::diagnostics::{
-    DiagAbout, DiagSettings, Diagnostics, DiagnosticsJob, SubOptimum,
-};
-use dmpscope_core::landscape::Landscape;
+use dmpscope_core::extract::diagnostics::resample::SubOptimum;
+use dmpscope_core::extract::diagnostics::{DiagAbout, DiagSettings, Diagnostics, DiagnosticsJob};
+use dmpscope_core::landscape::grid::Landscape;
 use std::time::Duration;
 
 use dmpscope_core::{Extraction, Model};

@@ -140,7 +140,7 @@ pub(crate) fn run(
             forcing_sd: forcing_sd.clone(),
         })
         .map_err(|e| match e {
-            dmpscope_core::Error::InvalidSetting(m) => m,
+            dmpscope_core::error::Error::InvalidSetting(m) => m,
             other => other.to_string(),
         })
 }

@@ -5,10 +5,11 @@
 
 use std::sync::Arc;
 
-use dmpscope_core::landscape::{FillOrder, Grid, Landscape, LandscapeJob};
+use dmpscope_core::landscape::grid::{FillOrder, Grid, Landscape, LandscapeJob};
 use std::time::Duration;
 
-use dmpscope_core::quantity::{self, Quantity};
+use dmpscope_core::landscape::quantity;
+use dmpscope_core::landscape::quantity::Quantity;
 use dmpscope_core::{Model, Result};
 
 use crate::jobs::{Clock, Runner, Step, Work};

@@ -55,10 +55,10 @@ pub mod workers;
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
-use dmpscope_core::extract::Refined;
-use dmpscope_core::orientation::OrientationRollout;
-use dmpscope_core::report::Constrained;
-use dmpscope_core::similarity::Standardised;
+use dmpscope_core::extract::optimum::Refined;
+use dmpscope_core::fit::orientation::OrientationRollout;
+use dmpscope_core::kernels::similarity::Standardised;
+use dmpscope_core::report::summary::Constrained;
 use dmpscope_core::{
     DemoInfo, Extraction, Model, Notice, PointEval, RawDemo, Report, Rollout, TableRow,
 };
@@ -273,7 +273,8 @@ impl Session {
         self.update_rl();
         // The executor's workers: one that failed, or none that started.
         for text in self.runner.take_notices() {
-            self.messages.say(dmpscope_core::Level::Warning, text);
+            self.messages
+                .say(dmpscope_core::notice::Level::Warning, text);
         }
     }
 

@@ -10,8 +10,9 @@ use std::collections::VecDeque;
 use std::sync::Arc;
 use std::time::Duration;
 
-use dmpscope_core::diagnostics::{DiagnosticsJob, SubOptimum};
-use dmpscope_core::landscape::{Grid, Landscape};
+use dmpscope_core::extract::diagnostics::DiagnosticsJob;
+use dmpscope_core::extract::diagnostics::resample::SubOptimum;
+use dmpscope_core::landscape::grid::{Grid, Landscape};
 use dmpscope_core::{Model, Result};
 
 use crate::jobs::Clock;

@@ -9,7 +9,8 @@
 
 use std::sync::Arc;
 
-use dmpscope_core::rl::{EnvOptions, FirstReach, GreedyRun, RunReport, TrainingRun};
+use dmpscope_core::rl::env::{EnvOptions, GreedyRun};
+use dmpscope_core::rl::run::{FirstReach, RunReport, TrainingRun};
 use dmpscope_core::{Error, Model, Result};
 use std::time::Duration;
 

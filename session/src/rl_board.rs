@@ -6,7 +6,8 @@
 //! [`Progress`] a run trained on the page gives.
 
 use dmpscope_core::Model;
-use dmpscope_core::rl::{FirstReach, GreedyRun, RunReport, TrainingRun};
+use dmpscope_core::rl::env::GreedyRun;
+use dmpscope_core::rl::run::{FirstReach, RunReport, TrainingRun};
 use serde::{Deserialize, Serialize};
 
 use super::rl::{Progress, RlRequest};
@@ -193,7 +194,7 @@ impl RunBoard {
 
 #[cfg(test)]
 mod tests {
-    use dmpscope_core::rl::EnvOptions;
+    use dmpscope_core::rl::env::EnvOptions;
 
     use super::*;
     use crate::rl::RlRun;

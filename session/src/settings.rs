@@ -3,11 +3,11 @@
 //! preprocessing, the DMP and the grid, so the app has every option the CLI
 //! has and every default is the core's.
 
-use dmpscope_core::diagnostics::DiagSettings;
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::io::LoadOptions;
-use dmpscope_core::landscape::{AxisScale, Grid};
-use dmpscope_core::presets::PAPER_PRESETS;
+use dmpscope_core::extract::diagnostics::DiagSettings;
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::landscape::grid::{AxisScale, Grid};
+use dmpscope_core::load::mcap::LoadOptions;
+use dmpscope_core::report::presets::PAPER_PRESETS;
 use dmpscope_core::{DEFAULT_K, PrepSettings};
 use serde::{Deserialize, Serialize};
 
@@ -37,7 +37,7 @@ pub struct Settings {
     /// How the gains are picked in the acceptable region (method.md
     /// section 11); `None`: optimum when J is not flat, compliant when it
     /// is.
-    pub pick: Option<dmpscope_core::allowed::PickRule>,
+    pub pick: Option<dmpscope_core::extract::allowed::PickRule>,
     /// The acceptable region's eps: J within this fraction of J*.
     pub accept_eps: f64,
 }
@@ -63,7 +63,7 @@ impl Default for Settings {
             diagnostics: DiagSettings::default(),
             a_peak_limit: None,
             pick: None,
-            accept_eps: dmpscope_core::allowed::DEFAULT_EPS,
+            accept_eps: dmpscope_core::extract::allowed::DEFAULT_EPS,
         }
     }
 }

@@ -7,8 +7,9 @@
 use std::path::PathBuf;
 use std::sync::{Arc, LazyLock};
 
-use dmpscope_core::arrange::{Arrangement, Overrides, StreamInfo, arrange};
-use dmpscope_core::io::{LoadOptions, SourceData, SourceDemos, UpAxis, load_streams};
+use dmpscope_core::arrange::streams::{Arrangement, Overrides, StreamInfo, arrange};
+use dmpscope_core::load::mcap::{LoadOptions, UpAxis};
+use dmpscope_core::load::source::{SourceData, SourceDemos, load_streams};
 use dmpscope_core::{Level, Notice, RawDemo};
 
 use crate::jobs::{Once, Runner};
@@ -107,7 +108,7 @@ pub struct StreamKey {
     /// The frame TF transforms are expressed in.
     pub fixed_frame: Option<String>,
     /// The positions' unit.
-    pub units: dmpscope_core::units::Units,
+    pub units: dmpscope_core::load::units::Units,
     /// Whether a bad orientation drops it instead of stopping the load.
     pub drop_bad_orientation: bool,
 }

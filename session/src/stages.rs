@@ -5,14 +5,14 @@
 
 use std::sync::{Arc, OnceLock};
 
-use dmpscope_core::arrange::unique_names;
-use dmpscope_core::diagnostics::DiagSettings;
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::extract::{Refined, constrained};
-use dmpscope_core::landscape::Grid;
-use dmpscope_core::orientation::OrientationRollout;
-use dmpscope_core::presets::PAPER_PRESETS;
-use dmpscope_core::similarity::Standardised;
+use dmpscope_core::arrange::streams::unique_names;
+use dmpscope_core::extract::diagnostics::DiagSettings;
+use dmpscope_core::extract::optimum::{Refined, constrained};
+use dmpscope_core::fit::orientation::OrientationRollout;
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::kernels::similarity::Standardised;
+use dmpscope_core::landscape::grid::Grid;
+use dmpscope_core::report::presets::PAPER_PRESETS;
 use dmpscope_core::{
     Extraction, Level, Model, PointEval, PrepSettings, RawDemo, Rollout, Unusable, build_model,
     extract,

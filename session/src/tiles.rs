@@ -12,8 +12,9 @@
 use std::collections::VecDeque;
 
 use dmpscope_core::Result;
-use dmpscope_core::landscape::{FillOrder, Grid, Landscape, fill_order};
-use dmpscope_core::quantity::{self, PointValues};
+use dmpscope_core::landscape::grid::{FillOrder, Grid, Landscape, fill_order};
+use dmpscope_core::landscape::quantity;
+use dmpscope_core::landscape::quantity::PointValues;
 
 /// What became of an answer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -143,8 +144,8 @@ impl TiledFill {
 mod tests {
     use std::sync::Arc;
 
-    use dmpscope_core::dmp::DmpSettings;
-    use dmpscope_core::landscape::{Axis, AxisScale, LandscapeJob};
+    use dmpscope_core::fit::settings::DmpSettings;
+    use dmpscope_core::landscape::grid::{Axis, AxisScale, LandscapeJob};
     use dmpscope_core::{Model, PrepSettings, PreparedDemo, prepare, synth};
 
     use super::*;
@@ -160,7 +161,7 @@ mod tests {
     }
 
     fn model() -> Arc<Model> {
-        let demos: Vec<PreparedDemo> = synth::reach_raw_demos(3, 3, 0)
+        let demos: Vec<PreparedDemo> = synth::vive::reach_raw_demos(3, 3, 0)
             .iter()
             .map(|raw| prepare(raw, &PrepSettings::default()).expect("prepared"))
             .collect();

@@ -17,9 +17,9 @@ use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::Duration;
 
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::landscape::{Grid, Landscape};
-use dmpscope_core::rl::TrainingRun;
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::landscape::grid::{Grid, Landscape};
+use dmpscope_core::rl::run::TrainingRun;
 use dmpscope_core::{Model, PreparedDemo};
 use serde::{Deserialize, Serialize};
 
@@ -151,7 +151,9 @@ impl WorkerState {
             .get(&generation)
             .ok_or_else(|| format!("worker: no diagnosis {generation}"))?;
         Ok(
-            match dmpscope_core::diagnostics::optimum_of(model, &indices, *grid, *k) {
+            match dmpscope_core::extract::diagnostics::resample::optimum_of(
+                model, &indices, *grid, *k,
+            ) {
                 Ok(o) => vec![o.dm, o.km, o.j, f64::from(u8::from(o.on_edge))],
                 Err(_) => Vec::new(),
             },

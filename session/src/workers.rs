@@ -20,7 +20,7 @@
 use std::collections::BTreeSet;
 use std::sync::{Arc, Mutex};
 
-use dmpscope_core::landscape::Grid;
+use dmpscope_core::landscape::grid::Grid;
 use dmpscope_core::{Model, Result};
 use serde::{Deserialize, Serialize};
 

@@ -10,7 +10,7 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use dmpscope_core::Model;
-use dmpscope_core::rl::EnvOptions;
+use dmpscope_core::rl::env::EnvOptions;
 use dmpscope_session::executor::InlineExecutor;
 use dmpscope_session::worker_side::{ModelInputs, RunSlice, WorkerState};
 use dmpscope_session::workers::{Dispatcher, FromWorker, Reply, Setup, ToWorker, Transport};

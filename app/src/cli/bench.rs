@@ -4,12 +4,14 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use dmpscope_core::demo::median;
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::io::{LoadOptions, SourceData, load_source};
-use dmpscope_core::kernel_dispatch::{instruction_set, set_avx512};
-use dmpscope_core::landscape::{Axis, Grid};
-use dmpscope_core::{PrepSettings, Unusable, landscape};
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::kernels::dispatch::{instruction_set, set_avx512};
+use dmpscope_core::landscape::grid as landscape;
+use dmpscope_core::landscape::grid::{Axis, Grid};
+use dmpscope_core::load::demo::median;
+use dmpscope_core::load::mcap::LoadOptions;
+use dmpscope_core::load::source::{SourceData, load_source};
+use dmpscope_core::{PrepSettings, Unusable};
 
 use super::inputs::model_of;
 
@@ -321,7 +323,7 @@ fn diagnostics_figures(
     grid: Grid,
     repeat: usize,
 ) -> anyhow::Result<()> {
-    use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
+    use dmpscope_core::extract::diagnostics::{DiagSettings, DiagnosticsJob};
     let cancel = std::sync::atomic::AtomicBool::new(false);
     let land = landscape::compute(model.clone(), grid, &cancel, &mut |_, _| {})?;
     let x = dmpscope_core::extract(model, &land, dmpscope_core::DEFAULT_K)?;
@@ -349,10 +351,11 @@ fn diagnostics_figures(
 /// forward + backward + Adam, as `/tmp` probes of burn measured it) and one
 /// PPO iteration (4 episodes + 8 epochs of updates).
 fn rl_figures(model: &dmpscope_core::Model) -> anyhow::Result<()> {
+    use dmpscope_core::rl::env::{DmpEnv, EnvOptions};
     use dmpscope_core::rl::loss::{Batch, critic_loss_grad};
     use dmpscope_core::rl::mlp::{Adam, Mlp};
-    use dmpscope_core::rl::{DmpEnv, EnvOptions, PpoConfig, Trainer};
-    let mut rng = dmpscope_core::synth::Rng::new(1);
+    use dmpscope_core::rl::ppo::{PpoConfig, Trainer};
+    let mut rng = dmpscope_core::rng::Rng::new(1);
     let mut critic = Mlp::new(&[7, 64, 64, 1], &mut rng, 1.0);
     let mut adam = Adam::new(critic.params.len(), 1e-3);
     let mut batch = Batch::default();

@@ -3,9 +3,9 @@
 
 use std::time::Instant;
 
-use dmpscope_core::demo::median;
-use dmpscope_core::io::load_bytes;
-use dmpscope_core::io::write::{TopicSamples, write_pose_stamped};
+use dmpscope_core::export::write::{TopicSamples, write_pose_stamped};
+use dmpscope_core::load::demo::median;
+use dmpscope_core::load::mcap::load_bytes;
 
 /// A recording of `messages` PoseStamped messages on 10 topics.
 fn recording(messages: usize, compress: bool) -> anyhow::Result<Vec<u8>> {

@@ -5,9 +5,9 @@
 use std::sync::Arc;
 
 use dmpscope_core::Report;
-use dmpscope_core::allowed::{Allowed, DEFAULT_EPS, PickRule, PickSettings};
-use dmpscope_core::diagnostics::{DiagSettings, DiagnosticsJob};
-use dmpscope_core::report::{Constrained, LoadingChoices, TableRow};
+use dmpscope_core::extract::allowed::{Allowed, DEFAULT_EPS, PickRule, PickSettings};
+use dmpscope_core::extract::diagnostics::{DiagSettings, DiagnosticsJob};
+use dmpscope_core::report::summary::{Constrained, LoadingChoices, TableRow};
 
 use super::inputs::InputArgs;
 use super::landscape::{GridArgs, landscape_and_optimum};
@@ -91,7 +91,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!(
                 "note: J is flat (depth below {}): J alone does not determine the gains; the \
                  output says what the data allow and which gains are picked in it",
-                dmpscope_core::diagnostics::FLAT_DEPTH
+                dmpscope_core::extract::diagnostics::balance::FLAT_DEPTH
             );
         }
         report = report.with_diagnostics(job.diagnostics().clone(), job.about().clone());

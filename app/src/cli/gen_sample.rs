@@ -5,9 +5,9 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use dmpscope_core::io::write::{BulkTopic, TopicSamples, write_pose_stamped_with_bulk};
-use dmpscope_core::planted::{PlantedSpec, planted_demos};
-use dmpscope_core::synth::reach_demos;
+use dmpscope_core::export::write::{BulkTopic, TopicSamples, write_pose_stamped_with_bulk};
+use dmpscope_core::synth::planted::{PlantedSpec, planted_demos};
+use dmpscope_core::synth::vive::reach_demos;
 
 /// Arguments of `gen-sample`.
 #[derive(Debug, clap::Args)]
@@ -77,7 +77,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 seed: args.seed,
                 scale_forcing: match args.scale_forcing {
                     ScaleForcing::Absolute => None,
-                    ScaleForcing::Frame => Some(dmpscope_core::Scaling::Frame),
+                    ScaleForcing::Frame => Some(dmpscope_core::fit::mapping::Scaling::Frame),
                 },
             };
             planted_demos(&spec, EPOCH_NS)

@@ -2,8 +2,8 @@
 //! skipped, and with `--segment` the demonstrations a continuous recording
 //! splits into.
 
-use dmpscope_core::segment::find_segments;
-use dmpscope_core::text::{pad_right, widest};
+use dmpscope_core::arrange::segment::find_segments;
+use dmpscope_core::report::text::{pad_right, widest};
 
 use super::inputs::LoadArgs;
 

@@ -1,5 +1,5 @@
 //! From command-line paths to a fitted model, through the same core calls
-//! the app makes: [`dmpscope_core::io::load_source`] for each FILE (a file or
+//! the app makes: [`dmpscope_core::load::source::load_source`] for each FILE (a file or
 //! a folder) with the loading flags as [`LoadOptions`], demos pooled in
 //! command-line order, then [`dmpscope_core::build_model`] with the
 //! `--unusable` policy. Every default is the core's.
@@ -8,13 +8,14 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use dmpscope_core::SkillMode;
-use dmpscope_core::arrange::{StreamFilter, unique_names};
-use dmpscope_core::dmp::DmpSettings;
-use dmpscope_core::gaps::GapPolicy;
-use dmpscope_core::group::Grouping;
-use dmpscope_core::io::{LoadOptions, SourceData, UpAxis, load_source, load_streams};
-use dmpscope_core::segment::{SegmentPick, SegmentSettings};
-use dmpscope_core::units::Units;
+use dmpscope_core::arrange::gaps::GapPolicy;
+use dmpscope_core::arrange::group::Grouping;
+use dmpscope_core::arrange::segment::{SegmentPick, SegmentSettings};
+use dmpscope_core::arrange::streams::{StreamFilter, unique_names};
+use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::load::mcap::{LoadOptions, UpAxis};
+use dmpscope_core::load::source::{SourceData, load_source, load_streams};
+use dmpscope_core::load::units::Units;
 use dmpscope_core::{Model, PrepSettings, RawDemo, Unusable, build_model};
 
 use super::output::print_notices;
@@ -208,11 +209,11 @@ impl LoadArgs {
             &str,
             SourceData<'_>,
             &LoadOptions,
-        ) -> dmpscope_core::Result<dmpscope_core::io::SourceDemos>,
+        ) -> dmpscope_core::Result<dmpscope_core::load::source::SourceDemos>,
     ) -> anyhow::Result<Vec<RawDemo>> {
         let options = self.options();
         if self.segments != SegmentPick::All && self.demos != DemosBy::Segment {
-            print_notices(&[dmpscope_core::Notice::warning(format!(
+            print_notices(&[dmpscope_core::notice::Notice::warning(format!(
                 "--segments {} applies only with --demos segment: every demo is kept",
                 self.segments.name()
             ))]);

@@ -4,7 +4,8 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use dmpscope_core::landscape::{self, Axis, AxisScale, Grid, Landscape};
+use dmpscope_core::landscape::grid as landscape;
+use dmpscope_core::landscape::grid::{Axis, AxisScale, Grid, Landscape};
 use dmpscope_core::{Extraction, Model, Report, extract};
 
 use super::inputs::{InputArgs, load_model};
@@ -115,7 +116,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(map) = doc.as_object_mut() {
         map.insert("dm".into(), serde_json::to_value(&land.dm)?);
         map.insert("km".into(), serde_json::to_value(&land.km)?);
-        for q in dmpscope_core::quantity::ALL {
+        for q in dmpscope_core::landscape::quantity::ALL {
             let rows = land.rows(land.values(q));
             map.insert(q.about().key.into(), serde_json::to_value(rows)?);
         }

@@ -9,15 +9,14 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use dmpscope_core::io::dmp_doc::{DocContext, dmp_document};
-use dmpscope_core::io::export::{
+use dmpscope_core::export::dmp_doc::{DocContext, dmp_document};
+use dmpscope_core::export::recording::{
     ExportPath, ROLE_REGENERATED, TopicNames, TrajectoryExport, demo_paths, write_export_mcap,
 };
-use dmpscope_core::io::ros_traj::{TimedOrientation, TimedPath};
-use dmpscope_core::text::{pad_right, width};
-use dmpscope_core::{
-    Generalised, Model, Primitive, RawDemo, Scaling, Skill, Target, orientation, rotation,
-};
+use dmpscope_core::export::ros_traj::{TimedOrientation, TimedPath};
+use dmpscope_core::fit::orientation;
+use dmpscope_core::report::text::{pad_right, width};
+use dmpscope_core::{Generalised, Model, Primitive, RawDemo, Scaling, Skill, Target, rotation};
 
 use super::inputs::{InputArgs, load_model};
 use super::output::write_text;
@@ -219,7 +218,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 fn make_runs(model: &Model, args: &Args, target: &Target) -> anyhow::Result<Vec<Run>> {
     let run_of = |primitive: Primitive, demo, skill| -> anyhow::Result<Run> {
         let out = primitive.rollout(target).map_err(|e| match e {
-            dmpscope_core::Error::InvalidSetting(m) => anyhow::anyhow!(m),
+            dmpscope_core::error::Error::InvalidSetting(m) => anyhow::anyhow!(m),
             other => other.into(),
         })?;
         Ok(Run {

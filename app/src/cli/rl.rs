@@ -10,8 +10,9 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use dmpscope_core::Model;
-use dmpscope_core::presets::PAPER_PRESETS;
-use dmpscope_core::rl::{ActionMode, EnvOptions, ExploreScale, RunReport, TrainingRun};
+use dmpscope_core::report::presets::PAPER_PRESETS;
+use dmpscope_core::rl::env::{ActionMode, EnvOptions, ExploreScale};
+use dmpscope_core::rl::run::{RunReport, TrainingRun};
 use serde_json::json;
 
 use super::inputs::{InputArgs, load_model};
@@ -94,7 +95,7 @@ pub struct Args {
     #[arg(long, default_value_t = dmpscope_core::rl::env::DECISIONS)]
     decisions: usize,
     /// Environment decisions to train for.
-    #[arg(long, default_value_t = dmpscope_core::rl::DEFAULT_DECISIONS)]
+    #[arg(long, default_value_t = dmpscope_core::rl::ppo::DEFAULT_DECISIONS)]
     steps: usize,
     /// Seed of the first run.
     #[arg(long, default_value_t = 1)]
@@ -286,7 +287,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             "demo": model.demos()[demo].name,
             "dm": env.dm, "km": env.km,
             "mode": env.mode().name(),
-            "decisions_per_episode": dmpscope_core::rl::Task::decisions(env),
+            "decisions_per_episode": dmpscope_core::rl::task::Task::decisions(env),
             "integration_steps_per_decision": env.hold(),
             "start": env.start(), "goal": env.goal(),
             "action_scale": env.action_scale(),

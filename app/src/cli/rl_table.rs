@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use dmpscope_core::rl::{RunReport, summarise};
+use dmpscope_core::rl::run::{RunReport, summarise};
 use serde_json::json;
 
 /// A run as JSON.

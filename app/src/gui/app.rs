@@ -177,7 +177,7 @@ impl DmpApp {
 
     /// The run at the new target as `docs/export.md`'s document.
     fn dmp_json(&self) -> Result<String, String> {
-        use dmpscope_core::io::dmp_doc::{DocContext, dmp_document};
+        use dmpscope_core::export::dmp_doc::{DocContext, dmp_document};
         let model = self
             .session
             .model()

@@ -83,7 +83,7 @@ impl Map {
 
     /// Every map: J, then the table's quantities.
     pub fn all() -> impl Iterator<Item = Self> {
-        std::iter::once(Self::J).chain(dmpscope_core::quantity::ALL.map(Self::Quantity))
+        std::iter::once(Self::J).chain(dmpscope_core::landscape::quantity::ALL.map(Self::Quantity))
     }
 
     /// The values of this map in `shown`.

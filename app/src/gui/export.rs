@@ -2,7 +2,7 @@
 //! Table I as JSON, CSV or Markdown): a heat map as a PNG (grid resolution,
 //! scaled up with square pixels, K/M up).
 
-use dmpscope_core::landscape::Grid;
+use dmpscope_core::landscape::grid::Grid;
 use eframe::egui::ColorImage;
 
 use super::heatmap::colour_image;
@@ -42,7 +42,7 @@ pub fn png_of(image: &ColorImage, scale: usize) -> Result<Vec<u8>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use dmpscope_core::landscape::{Axis, AxisScale};
+    use dmpscope_core::landscape::grid::{Axis, AxisScale};
 
     #[test]
     fn a_heat_map_png_decodes_to_the_map_scaled_up() {

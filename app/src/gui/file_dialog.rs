@@ -136,7 +136,7 @@ impl Dialogs {
                     dialog
                         .add_filter(
                             "recordings",
-                            &dmpscope_core::io::formats::dialog_extensions(),
+                            &dmpscope_core::load::formats::dialog_extensions(),
                         )
                         .add_filter("all files", &["*"])
                         .pick_files()

@@ -4,7 +4,7 @@
 //! 9). Hovering a demo's curve highlights it (here, in the 3D view and the
 //! demos list); demos flagged as inconsistent are drawn dashed.
 
-use dmpscope_core::similarity::Standardised;
+use dmpscope_core::kernels::similarity::Standardised;
 use eframe::egui::{self, Color32};
 use egui_plot::{ItemId, Line, LineStyle, Plot, PlotPoints};
 

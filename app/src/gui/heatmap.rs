@@ -5,8 +5,9 @@
 //! sum d, S, J and a_peak, and the operating point, which a click or drag
 //! moves.
 
-use dmpscope_core::landscape::{Axis, AxisScale, Grid};
-use dmpscope_core::quantity::{self, PointValues};
+use dmpscope_core::landscape::grid::{Axis, AxisScale, Grid};
+use dmpscope_core::landscape::quantity;
+use dmpscope_core::landscape::quantity::PointValues;
 use eframe::egui::{
     self, Align2, Color32, ColorImage, FontId, Pos2, Rect, Sense, Stroke, TextureHandle,
     TextureOptions, Vec2,
@@ -427,7 +428,7 @@ fn heatmap_readout_ui(area: &MapArea, response: &egui::Response, input: &MapInpu
         let (dm, km) = area.at(pos);
         let (i, j) = (nearest(&area.grid.dm, dm), nearest(&area.grid.km, km));
         let (jv, values) = (input.readout)(i, j);
-        let zeta = dmpscope_core::model::zeta(dm, km);
+        let zeta = dmpscope_core::landscape::model::zeta(dm, km);
         let inside = match input.region {
             Some(r) if r.get(i * area.grid.km.n + j) == Some(&true) => "\nin the acceptable region",
             _ => "",

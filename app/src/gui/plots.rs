@@ -3,9 +3,10 @@
 //! for a demo with orientation (method.md section 12), the rotation to the
 //! goal, the angular velocity and the angular acceleration per axis.
 
+use dmpscope_core::fit::orientation::OrientationRollout;
 use dmpscope_core::geom::Vec3 as Point;
-use dmpscope_core::orientation::OrientationRollout;
-use dmpscope_core::rotation::{self, Q};
+use dmpscope_core::rotation;
+use dmpscope_core::rotation::Q;
 use dmpscope_core::{PreparedDemo, Rollout};
 use eframe::egui::{self, Color32};
 use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints, VLine};

@@ -159,7 +159,7 @@ impl DmpApp {
         };
         let request = crate::session::RlRequest {
             demo: self.view.selected,
-            options: dmpscope_core::rl::EnvOptions::default(),
+            options: dmpscope_core::rl::env::EnvOptions::default(),
             steps,
             runs: vec![crate::session::RlRun {
                 gains_name: "extracted".into(),

@@ -6,7 +6,7 @@
 //! (each the largest of its run, so no peak is lost).
 
 use dmpscope_core::RawDemo;
-use dmpscope_core::segment::{SegmentSettings, find_segments, speeds};
+use dmpscope_core::arrange::segment::{SegmentSettings, find_segments, speeds};
 use eframe::egui::{self, Color32};
 use egui_plot::{HLine, Line, Plot, PlotPoints, Span};
 

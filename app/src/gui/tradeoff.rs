@@ -3,7 +3,7 @@
 //! where it touches the front), the operating point; a click moves the
 //! operating point to the grid point of the front nearest it.
 
-use dmpscope_core::diagnostics::pareto_front;
+use dmpscope_core::extract::diagnostics::pareto::pareto_front;
 use eframe::egui::{self, Color32};
 use egui_plot::{Line, MarkerShape, Plot, PlotPoint, Points};
 

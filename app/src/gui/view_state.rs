@@ -2,7 +2,7 @@
 //! the session's: the selected demo, the time cursor, the 3D camera, the
 //! heat maps' textures, the RL panel's choices, text being typed.
 
-use dmpscope_core::segment::SegmentSettings;
+use dmpscope_core::arrange::segment::SegmentSettings;
 use eframe::{egui, egui_wgpu};
 
 use super::commands::Map;
@@ -20,16 +20,16 @@ pub struct RlChoices {
     /// The seed.
     pub seed: u64,
     /// Decisions per episode and the action mode.
-    pub options: dmpscope_core::rl::EnvOptions,
+    pub options: dmpscope_core::rl::env::EnvOptions,
 }
 
 impl Default for RlChoices {
     fn default() -> Self {
         Self {
             gains: 1,
-            steps: dmpscope_core::rl::DEFAULT_DECISIONS,
+            steps: dmpscope_core::rl::ppo::DEFAULT_DECISIONS,
             seed: 1,
-            options: dmpscope_core::rl::EnvOptions::default(),
+            options: dmpscope_core::rl::env::EnvOptions::default(),
         }
     }
 }
@@ -102,7 +102,7 @@ impl ViewState {
             t: 0.5,
             view3d: View3d::new(render_state),
             maps: Default::default(),
-            second_map: Map::Quantity(dmpscope_core::Quantity::S),
+            second_map: Map::Quantity(dmpscope_core::landscape::quantity::Quantity::S),
             right: RightTab::default(),
             orientation_plots: false,
             hovered: None,

@@ -8,7 +8,7 @@ use std::cell::RefCell;
 use std::sync::Arc;
 use std::time::Duration;
 
-use dmpscope_core::landscape::Grid;
+use dmpscope_core::landscape::grid::Grid;
 use dmpscope_session::RlRequest;
 use dmpscope_session::worker_side::{ModelInputs, RunSlice, WorkerState};
 use dmpscope_session::workers::Setup;

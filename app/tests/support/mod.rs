@@ -51,11 +51,11 @@ pub fn tmp_path(name: &str) -> PathBuf {
 /// its path. `short` adds, to the first file, a topic of 5 samples no demo
 /// can be made of.
 pub fn rosbag2_folder(name: &str, splits: &[(usize, usize)], short: bool) -> PathBuf {
-    use dmpscope_core::io::write::{TopicSamples, write_pose_stamped};
+    use dmpscope_core::export::write::{TopicSamples, write_pose_stamped};
     let dir = tmp_path(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("bag folder");
-    let demos = dmpscope_core::synth::reach_demos(
+    let demos = dmpscope_core::synth::vive::reach_demos(
         7,
         splits.iter().map(|r| r.1).max().unwrap_or(0),
         1_700_000_000_000_000_000,
@@ -105,7 +105,8 @@ pub fn rosbag2_folder(name: &str, splits: &[(usize, usize)], short: bool) -> Pat
 /// `tracker` and a still `shoulder_link`, `/tf_static` with one message,
 /// and a moving `/hand` PoseStamped topic (another reach, 1 s later).
 pub fn tf_bag_bytes() -> Vec<u8> {
-    use dmpscope_core::io::ros2::{self, StampedTransform};
+    use dmpscope_core::load::decode::ros2;
+    use dmpscope_core::load::decode::ros2::StampedTransform;
     use mcap::records::MessageHeader;
     let epoch: i64 = 1_700_000_000_000_000_000;
     let reach = |t0: i64, scale: f64| -> Vec<(i64, [f64; 3])> {

@@ -16,7 +16,7 @@
 //!   motion's size (`forcing`, the paper's); or `A = f_fit + scale * u` with
 //!   `f_fit` the demo's fitted forcing term at the gains (`residual`).
 //! - **Exploration** ([`ExploreScale`]): the policy's initial deviation
-//!   per axis is [`super::PpoConfig::init_sd`] (0.5) times the RMS of the
+//!   per axis is [`crate::rl::ppo::PpoConfig::init_sd`] (0.5) times the RMS of the
 //!   demo's own acceleration `y''` (default) or of its fitted forcing term.
 //! - **Observation** (7 values): the phase `s` in 0..1, then per axis
 //!   `(y - g) / r` and `y' / r` with `r = max(|g - y0|_2, 5 cm)`.
@@ -27,9 +27,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::policy::Policy;
-use super::task::{Step, Task};
 use crate::geom::Vec3;
+use crate::rl::policy::Policy;
+use crate::rl::task::{Step, Task};
 use crate::{Error, Model, Result};
 
 /// Decisions per episode unless told otherwise.
@@ -69,7 +69,7 @@ impl ActionMode {
 
 /// What the policy's initial exploration is scaled to
 /// ([`Task::action_size`]; the deviation is
-/// [`super::PpoConfig::init_sd`] times it).
+/// [`crate::rl::ppo::PpoConfig::init_sd`] times it).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ExploreScale {

@@ -3,8 +3,8 @@
 //! Gaussian policy with advantages standardised per minibatch and an
 //! optional entropy bonus, and the critic's squared error.
 
-use super::math;
-use super::mlp::Mlp;
+use crate::rl::math;
+use crate::rl::mlp::Mlp;
 
 /// Transitions of a batch (the policy's raw outputs as actions).
 #[derive(Clone, Debug, Default)]

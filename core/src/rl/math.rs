@@ -7,7 +7,7 @@
 
 pub use crate::portable::{exp, ln, pow, tanh};
 
-use crate::synth::Rng;
+use crate::rng::Rng;
 
 /// A standard normal draw (Box-Muller on two of `rng`'s uniforms, as
 /// [`Rng::normal`] but with the portable functions).

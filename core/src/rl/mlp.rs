@@ -11,8 +11,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::math;
-use crate::synth::Rng;
+use crate::rl::math;
+use crate::rng::Rng;
 
 /// A fully connected network `sizes[0] -> ... -> sizes[last]`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -2,7 +2,7 @@
 //! mean and variance of every observation component, and of the discounted
 //! return, whose deviation rewards are divided by. The observation
 //! statistics belong to the policy: a policy is only meaningful with the
-//! normaliser it was trained with, so [`super::Policy`] carries them.
+//! normaliser it was trained with, so [`crate::rl::policy::Policy`] carries them.
 
 use serde::{Deserialize, Serialize};
 

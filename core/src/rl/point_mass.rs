@@ -13,7 +13,7 @@
 //! dt^2 (N - k - 1/2)`, so the least cost is `W RHO dt / (RHO dt + W b.b)`,
 //! at `u = b W / (RHO dt + W b.b)` ([`PointMass::optimal_cost`]).
 
-use super::task::{Step, Task};
+use crate::rl::task::{Step, Task};
 
 /// Effort weight.
 pub const RHO: f64 = 1.0;

@@ -5,9 +5,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::mlp::Mlp;
-use super::norm::RunningStat;
-use super::task::Task;
+use crate::rl::mlp::Mlp;
+use crate::rl::norm::RunningStat;
+use crate::rl::task::Task;
 use crate::{Error, Result};
 
 /// A Gaussian policy: `u ~ N(actor(normalise(obs)), exp(log_std)^2)`.

@@ -14,14 +14,14 @@
 //! updates; [`Trainer::step`] does a few milliseconds of it, so the app
 //! trains on a thread natively and in slices in the browser.
 
-use super::env::DmpEnv;
-use super::loss::{Batch, actor_loss_grad, critic_loss_grad, log_prob};
-use super::math;
-use super::mlp::{Adam, Mlp, clip_grad_norm};
-use super::norm::{ReturnScale, RunningStat};
-use super::policy::Policy;
-use super::task::Task;
-use crate::synth::Rng;
+use crate::rl::env::DmpEnv;
+use crate::rl::loss::{Batch, actor_loss_grad, critic_loss_grad, log_prob};
+use crate::rl::math;
+use crate::rl::mlp::{Adam, Mlp, clip_grad_norm};
+use crate::rl::norm::{ReturnScale, RunningStat};
+use crate::rl::policy::Policy;
+use crate::rl::task::Task;
+use crate::rng::Rng;
 use crate::{Error, Result};
 
 /// PPO's settings.

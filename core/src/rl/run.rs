@@ -6,10 +6,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::REACHED_M;
-use super::env::{DmpEnv, EnvOptions, GreedyRun};
-use super::outcome::diverged;
-use super::ppo::{IterStats, PpoConfig, Trainer};
+use crate::rl::REACHED_M;
+use crate::rl::env::{DmpEnv, EnvOptions, GreedyRun};
+use crate::rl::outcome::diverged;
+use crate::rl::ppo::{IterStats, PpoConfig, Trainer};
 use crate::{Error, Model, Result};
 
 /// When a run's mean first ended within [`REACHED_M`] of the goal.
@@ -121,7 +121,7 @@ impl TrainingRun {
             ));
         }
         let env = DmpEnv::new(model, demo, dm, km, options)?;
-        let config = PpoConfig::for_episode(super::Task::decisions(&env), budget);
+        let config = PpoConfig::for_episode(crate::rl::task::Task::decisions(&env), budget);
         Ok(Self {
             trainer: Trainer::new(env, config, seed),
             demo,

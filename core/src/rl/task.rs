@@ -1,7 +1,7 @@
 //! What PPO learns on: a [`Task`] is an episodic environment with a fixed
 //! number of decisions, continuous observations and actions, and a measure
 //! of how far from its goal an episode ended. The DMP environment
-//! ([`super::DmpEnv`]) and the sanity task ([`super::PointMass`]) are the
+//! ([`crate::rl::env::DmpEnv`]) and the sanity task ([`crate::rl::point_mass::PointMass`]) are the
 //! two.
 
 /// What one decision gave.
@@ -31,6 +31,6 @@ pub trait Task {
     fn goal_error(&self) -> f64;
     /// The size of the action the task needs, per action component, in the
     /// policy's output units: the initial policy standard deviation is a
-    /// fraction of it ([`super::PpoConfig::init_sd`]).
+    /// fraction of it ([`crate::rl::ppo::PpoConfig::init_sd`]).
     fn action_size(&self) -> Vec<f64>;
 }

@@ -10,9 +10,9 @@ use std::collections::BTreeMap;
 use std::io::Cursor;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-use dmpscope_core::io::ros2::POSE_STAMPED_SCHEMA;
-use dmpscope_core::io::write::{TopicSamples, write_pose_stamped};
-use dmpscope_core::io::{Loaded, load_bytes};
+use dmpscope_core::export::write::{TopicSamples, write_pose_stamped};
+use dmpscope_core::load::decode::ros2::POSE_STAMPED_SCHEMA;
+use dmpscope_core::load::mcap::{Loaded, load_bytes};
 use dmpscope_core::{Error, RawDemo, Result, TimeSource};
 use mcap::records::MessageHeader;
 
@@ -84,7 +84,7 @@ pub fn mcap_of_chunked(topics: &[(&str, &[Sample])], compress: bool, chunk_size:
                 log_time: *stamp as u64,
                 publish_time: *stamp as u64,
             };
-            let data = dmpscope_core::io::ros2::encode_pose_stamped(*stamp, "world", *p);
+            let data = dmpscope_core::load::decode::ros2::encode_pose_stamped(*stamp, "world", *p);
             w.write_to_known_channel(&header, &data).expect("message");
         }
     }
@@ -229,10 +229,10 @@ pub fn planted8_demos() -> Vec<RawDemo> {
 /// The demos of the bundled recording `name` (its bytes), loaded with the
 /// default options.
 fn bundled(name: &str, bytes: &[u8]) -> Vec<RawDemo> {
-    dmpscope_core::io::load_source(
+    dmpscope_core::load::source::load_source(
         name,
-        dmpscope_core::io::SourceData::Bytes(bytes),
-        &dmpscope_core::io::LoadOptions::default(),
+        dmpscope_core::load::source::SourceData::Bytes(bytes),
+        &dmpscope_core::load::mcap::LoadOptions::default(),
     )
     .unwrap_or_else(|e| panic!("the bundled {name} loads: {e}"))
     .demos
@@ -240,8 +240,8 @@ fn bundled(name: &str, bytes: &[u8]) -> Vec<RawDemo> {
 
 /// Planted demos (`dmpscope_core::planted`) as raw demos named
 /// `planted:i` on topics `/demo_ii`, orientations included.
-pub fn planted_raw(spec: &dmpscope_core::planted::PlantedSpec) -> Vec<RawDemo> {
-    dmpscope_core::planted::planted_demos(spec, EPOCH)
+pub fn planted_raw(spec: &dmpscope_core::synth::planted::PlantedSpec) -> Vec<RawDemo> {
+    dmpscope_core::synth::planted::planted_demos(spec, EPOCH)
         .iter()
         .enumerate()
         .map(|(i, d)| RawDemo {

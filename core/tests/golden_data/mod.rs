@@ -2,7 +2,7 @@
 //! golden tests share: reading them, the demos and model they describe.
 #![allow(dead_code)]
 
-use dmpscope_core::dmp::DmpSettings;
+use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::geom::Vec3;
 use dmpscope_core::{Model, PrepSettings, RawDemo, TimeSource, prepare};
 use serde_json::Value;

@@ -3,8 +3,8 @@
 //! pick and why, E's identifiability sentence), the gains for the robot at
 //! the pick and the operating point, and a button to go to the pick.
 
-use dmpscope_core::allowed::{PickRule, mean_duration};
-use dmpscope_core::robot::RobotGains;
+use dmpscope_core::extract::allowed::{PickRule, mean_duration};
+use dmpscope_core::extract::robot::RobotGains;
 use eframe::egui::{self, Color32};
 
 use super::PanelCtx;
@@ -22,8 +22,8 @@ pub fn allowed_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             Some(p) => format!(
                 "What the demos allow: {}, {} / {}",
                 p.rule.name(),
-                dmpscope_core::allowed::num(p.dm),
-                dmpscope_core::allowed::num(p.km)
+                dmpscope_core::extract::allowed::num(p.dm),
+                dmpscope_core::extract::allowed::num(p.km)
             ),
             None => "What the demos allow: no pick (open)".to_owned(),
         },

@@ -4,8 +4,9 @@
 //! (or, while there is no landscape, what the session is doing and what to
 //! do), and the 3D view below.
 
-use dmpscope_core::presets::PAPER_PRESETS;
-use dmpscope_core::quantity::{self, Quantity};
+use dmpscope_core::landscape::quantity;
+use dmpscope_core::landscape::quantity::Quantity;
+use dmpscope_core::report::presets::PAPER_PRESETS;
 use eframe::egui::{self, Color32};
 
 use super::super::commands::Map;

@@ -5,7 +5,8 @@
 //! the bootstrap's percentiles, the leave-one-out table, and the a_peak
 //! limit with its constrained optimum.
 
-use dmpscope_core::diagnostics::{DiagSettings, FLAT_DEPTH, INCONSISTENT_SHARE};
+use dmpscope_core::extract::diagnostics::balance::FLAT_DEPTH;
+use dmpscope_core::extract::diagnostics::{DiagSettings, INCONSISTENT_SHARE};
 use eframe::egui::{self, Color32};
 
 use super::super::view_state::ViewState;
@@ -319,7 +320,7 @@ fn first_limit(session: &Session) -> f64 {
         .extraction()
         .map(|x| x.eval.a_peak.iter().copied().fold(0.0, f64::max));
     let least = session.shown().map(|s| {
-        s.values(dmpscope_core::Quantity::APeak)
+        s.values(dmpscope_core::landscape::quantity::Quantity::APeak)
             .iter()
             .copied()
             .filter(|v| v.is_finite())

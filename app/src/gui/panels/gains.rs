@@ -2,7 +2,7 @@
 //! optimum), the extracted optimum and, on the box's edge, the warning with
 //! a button that widens the box.
 
-use dmpscope_core::presets::PAPER_PRESETS;
+use dmpscope_core::report::presets::PAPER_PRESETS;
 use eframe::egui::{self, Color32};
 
 use super::PanelCtx;

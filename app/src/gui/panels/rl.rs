@@ -5,8 +5,9 @@
 //! The learned path is drawn in the 3D view beside the demo and its LfD
 //! regeneration; finished runs are listed in a table (`rl_table.rs`).
 
-use dmpscope_core::presets::PAPER_PRESETS;
-use dmpscope_core::rl::{ActionMode, ExploreScale, REACHED_M};
+use dmpscope_core::report::presets::PAPER_PRESETS;
+use dmpscope_core::rl::REACHED_M;
+use dmpscope_core::rl::env::{ActionMode, ExploreScale};
 use eframe::egui::{self, Color32};
 use egui_plot::{Line, Plot, PlotPoints};
 

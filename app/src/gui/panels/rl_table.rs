@@ -4,7 +4,7 @@
 //! how steadily it stayed reached and whether training stayed stable; then
 //! one line per gain set.
 
-use dmpscope_core::rl::{RunReport, summarise};
+use dmpscope_core::rl::run::{RunReport, summarise};
 use eframe::egui::{self, Color32};
 
 /// The table of `runs`.

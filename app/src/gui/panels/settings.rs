@@ -111,7 +111,7 @@ pub fn settings_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         egui::ComboBox::from_id_salt("skill mode")
             .selected_text(s.dmp.skill_mode.name())
             .show_ui(ui, |ui| {
-                for mode in dmpscope_core::SkillMode::ALL {
+                for mode in dmpscope_core::fit::settings::SkillMode::ALL {
                     ui.selectable_value(&mut s.dmp.skill_mode, mode, mode.name())
                         .on_hover_text(mode.assumes());
                 }
@@ -135,7 +135,7 @@ pub fn settings_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
 
 /// The orientation's options (method.md section 12, beyond the paper):
 /// k_rot in J and separate orientation gains.
-fn orientation_rows(ui: &mut egui::Ui, dmp: &mut dmpscope_core::dmp::DmpSettings) {
+fn orientation_rows(ui: &mut egui::Ui, dmp: &mut dmpscope_core::fit::settings::DmpSettings) {
     let l = ui.label("J: k_rot").on_hover_text(
         "beyond the paper: J = S + k sum d + k_rot sum d_rot, d_rot in degrees (0: the \
          paper's J on positions; needs demos with orientation)",

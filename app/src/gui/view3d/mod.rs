@@ -10,7 +10,7 @@ mod scene;
 use dmpscope_core::geom::Vec3 as Point;
 use std::sync::Arc;
 
-use dmpscope_core::orientation::OrientationRollout;
+use dmpscope_core::fit::orientation::OrientationRollout;
 use dmpscope_core::{Model, Rollout};
 use eframe::egui::{self, Align2, Color32, FontId, Sense};
 use eframe::egui_wgpu;

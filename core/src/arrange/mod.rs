@@ -1,0 +1,13 @@
+//! Arrange: a source's streams turned into its demonstrations (method.md
+//! sections 1 and 13): the streams the user chose ([`streams`]), split at
+//! breaks in time ([`gaps`]), grouped one per topic, file or segment
+//! ([`group`], [`segment`]), their end rests measured or trimmed
+//! ([`rest`]).
+//!
+//! May use: load.
+
+pub mod gaps;
+pub mod group;
+pub mod rest;
+pub mod segment;
+pub mod streams;

@@ -1,0 +1,224 @@
+//! Splitting one continuous recording into demonstrations at rest periods:
+//! where the hand's speed stays below a threshold for long enough, one
+//! demonstration ends and the next begins. Fragments too short to be a
+//! demonstration are dropped.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::geom::Vec3;
+use crate::load::demo::RawDemo;
+
+/// Which of a recording's segments are demonstrations.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SegmentPick {
+    /// Every segment (the default).
+    #[default]
+    All,
+    /// The first movement of each recording (the reach of a
+    /// reach-and-return trial).
+    First,
+    /// The last movement of each recording.
+    Last,
+    /// The N-th movement (1-based) of each recording.
+    Nth(usize),
+}
+
+impl SegmentPick {
+    /// The segments kept of `all` (in time order).
+    pub fn pick<T>(self, mut all: Vec<T>) -> Vec<T> {
+        match self {
+            Self::All => all,
+            Self::First => all.into_iter().take(1).collect(),
+            Self::Last => all.pop().into_iter().collect(),
+            Self::Nth(n) => all.into_iter().nth(n.wrapping_sub(1)).into_iter().collect(),
+        }
+    }
+
+    /// The choice as on the command line (`all`, `first`, `last`, `N`).
+    pub fn name(self) -> String {
+        match self {
+            Self::All => "all".into(),
+            Self::First => "first".into(),
+            Self::Last => "last".into(),
+            Self::Nth(n) => n.to_string(),
+        }
+    }
+
+    /// Parses `all`, `first`, `last` or a positive number.
+    pub fn parse(text: &str) -> std::result::Result<Self, String> {
+        match text {
+            "all" => Ok(Self::All),
+            "first" => Ok(Self::First),
+            "last" => Ok(Self::Last),
+            n => match n.parse::<usize>() {
+                Ok(n) if n >= 1 => Ok(Self::Nth(n)),
+                _ => Err(format!(
+                    "expected all, first, last or a segment number from 1, got {text:?}"
+                )),
+            },
+        }
+    }
+}
+
+/// Settings of the segmentation.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct SegmentSettings {
+    /// Speed below which the hand is at rest, m/s.
+    pub rest_speed: f64,
+    /// Shortest rest that separates two demonstrations, seconds.
+    pub min_rest_s: f64,
+    /// Shortest demonstration kept, seconds.
+    pub min_segment_s: f64,
+    /// Width of the window the speed is measured over, seconds (longer is
+    /// less sensitive to tracker noise).
+    pub speed_window_s: f64,
+    /// Which segments of each recording are kept.
+    pub keep: SegmentPick,
+}
+
+impl Default for SegmentSettings {
+    fn default() -> Self {
+        Self {
+            rest_speed: 0.05,
+            min_rest_s: 0.2,
+            min_segment_s: 0.4,
+            speed_window_s: 0.05,
+            keep: SegmentPick::All,
+        }
+    }
+}
+
+impl SegmentSettings {
+    /// Checks the settings.
+    pub fn validate(&self) -> Result<()> {
+        let ok = |v: f64| v.is_finite() && v > 0.0;
+        if ok(self.rest_speed)
+            && ok(self.min_rest_s)
+            && ok(self.min_segment_s)
+            && ok(self.speed_window_s)
+        {
+            Ok(())
+        } else {
+            Err(Error::InvalidSetting(format!(
+                "segmentation settings must be positive: {self:?}"
+            )))
+        }
+    }
+}
+
+/// One demonstration found in a recording, as stamps of the recording.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Segment {
+    /// The first sample's stamp, ns.
+    pub start_ns: i64,
+    /// The last sample's stamp, ns.
+    pub end_ns: i64,
+    /// Index of the first sample in time order (after de-duplication).
+    pub first: usize,
+    /// Index of the last sample, inclusive.
+    pub last: usize,
+}
+
+/// The hand's speed at each sample (time order), m/s, as the distance
+/// travelled over a window of about `window_s` centred on the sample.
+pub fn speeds(stamps_ns: &[i64], positions: &[Vec3], window_s: f64) -> Vec<f64> {
+    let half = (window_s * 0.5e9) as i64;
+    let n = stamps_ns.len();
+    let (mut lo, mut hi) = (0, 0);
+    (0..n)
+        .map(|i| {
+            while stamps_ns[i] - stamps_ns[lo] > half {
+                lo += 1;
+            }
+            hi = hi.max(i);
+            while hi + 1 < n && stamps_ns[hi + 1] - stamps_ns[i] <= half {
+                hi += 1;
+            }
+            let (a, b) = if hi > lo {
+                (lo, hi)
+            } else {
+                (i.saturating_sub(1), (i + 1).min(n - 1))
+            };
+            let dt = (stamps_ns[b] - stamps_ns[a]) as f64 * 1e-9;
+            if dt <= 0.0 {
+                return 0.0;
+            }
+            let d2: f64 = (0..3)
+                .map(|ax| (positions[b][ax] - positions[a][ax]).powi(2))
+                .sum();
+            d2.sqrt() / dt
+        })
+        .collect()
+}
+
+/// The demonstrations in one recording: the stretches between rest periods
+/// of at least `min_rest_s`, each from the last sample of the rest before it
+/// to the first sample of the rest after it, at least `min_segment_s` long.
+pub fn find_segments(demo: &RawDemo, settings: &SegmentSettings) -> Result<Vec<Segment>> {
+    settings.validate()?;
+    let (stamps, positions) = demo.sorted_unique();
+    if stamps.len() < 2 {
+        return Ok(Vec::new());
+    }
+    let speed = speeds(&stamps, &positions, settings.speed_window_s);
+    let min_rest = (settings.min_rest_s * 1e9) as i64;
+    // Rest runs: maximal runs of slow samples lasting at least `min_rest`.
+    let mut rests: Vec<(usize, usize)> = Vec::new();
+    let mut i = 0;
+    while i < stamps.len() {
+        if speed[i] >= settings.rest_speed {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i + 1 < stamps.len() && speed[i + 1] < settings.rest_speed {
+            i += 1;
+        }
+        if stamps[i] - stamps[start] >= min_rest {
+            rests.push((start, i));
+        }
+        i += 1;
+    }
+    // Motion lies between rests, and before the first / after the last.
+    let mut bounds = Vec::new();
+    let mut from = 0;
+    for &(rest_start, rest_end) in &rests {
+        if rest_start > from {
+            bounds.push((from, rest_start));
+        }
+        from = rest_end;
+    }
+    if from + 1 < stamps.len() {
+        bounds.push((from, stamps.len() - 1));
+    }
+    let min_len = (settings.min_segment_s * 1e9) as i64;
+    Ok(bounds
+        .into_iter()
+        .filter(|&(a, b)| stamps[b] - stamps[a] >= min_len)
+        .map(|(first, last)| Segment {
+            start_ns: stamps[first],
+            end_ns: stamps[last],
+            first,
+            last,
+        })
+        .collect())
+}
+
+/// The recording cut into its segments, named `name#1`, `name#2`, ...
+pub fn split(demo: &RawDemo, settings: &SegmentSettings) -> Result<Vec<RawDemo>> {
+    let sorted = demo.sorted();
+    Ok(find_segments(demo, settings)?
+        .into_iter()
+        .enumerate()
+        .map(|(i, s)| {
+            sorted.part(
+                s.first..s.last + 1,
+                format!("{}#{}", demo.name, i + 1),
+                format!("{}#{}", demo.topic, i + 1),
+            )
+        })
+        .collect())
+}

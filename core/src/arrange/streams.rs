@@ -1,0 +1,554 @@
+//! From a source's streams to its demonstrations (method.md section 13):
+//! the streams the user chose (`--topic` / `--exclude` patterns), split at
+//! breaks in time ([`crate::gaps`]), screened (a stream whose stamp never
+//! advances or whose positions span less than [`StreamFilter::min_extent_m`]
+//! is skipped), then grouped ([`crate::group`]). Every stream is listed with
+//! what happened to it ([`StreamInfo`]), which the app's Recording panel
+//! shows; every skip is a notice naming file, topic and why. The CLI (through
+//! [`crate::load::source::load_source`]) and the app both arrange here.
+
+use std::collections::{BTreeMap, HashMap};
+
+use serde::{Deserialize, Serialize};
+
+use crate::arrange::gaps;
+use crate::arrange::gaps::GapPolicy;
+use crate::arrange::group::{Grouping, group_noting};
+use crate::arrange::segment::{SegmentSettings, find_segments};
+use crate::error::Result;
+use crate::load::demo::RawDemo;
+use crate::notice::Notice;
+
+/// The default least span of a stream's positions, metres (1 cm).
+pub const DEFAULT_MIN_EXTENT_M: f64 = 0.01;
+
+/// Which streams are demonstrations.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct StreamFilter {
+    /// Keep only streams matching one of these glob patterns (`*`, `?`);
+    /// empty keeps all. A pattern matches a stream's topic (`/tf`), its
+    /// topic and key (`/tf:hand`) or its key (`hand`).
+    pub topics: Vec<String>,
+    /// Leave out streams matching one of these patterns (matched the same
+    /// way; wins over `topics`).
+    pub exclude: Vec<String>,
+    /// A stream whose positions span less than this (the diagonal of their
+    /// bounding box, metres) does not move and is skipped.
+    pub min_extent_m: f64,
+}
+
+impl Default for StreamFilter {
+    fn default() -> Self {
+        Self {
+            topics: Vec::new(),
+            exclude: Vec::new(),
+            min_extent_m: DEFAULT_MIN_EXTENT_M,
+        }
+    }
+}
+
+/// What happened to a stream.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "status", content = "detail")]
+pub enum StreamStatus {
+    /// It gave demonstrations.
+    Kept,
+    /// The user left it out (an `--exclude` pattern, or the app's checkbox).
+    Excluded(String),
+    /// No `--topic` pattern matches it.
+    NotSelected,
+    /// Its stamps never advance (one sample, or all at one time).
+    NoTime,
+    /// It does not move: its positions span this many metres.
+    Still(f64),
+}
+
+impl StreamStatus {
+    /// Whether the stream gave demonstrations.
+    pub fn kept(&self) -> bool {
+        matches!(self, Self::Kept)
+    }
+
+    /// Why the stream was skipped, in words (empty when kept).
+    pub fn reason(&self, min_extent_m: f64) -> String {
+        match self {
+            Self::Kept => String::new(),
+            Self::Excluded(by) => format!("excluded ({by})"),
+            Self::NotSelected => "no --topic pattern matches it".to_owned(),
+            Self::NoTime => "its stamp never advances (no duration)".to_owned(),
+            Self::Still(span) => format!(
+                "it does not move (its positions span {:.1} mm, less than {:.1} mm)",
+                span * 1e3,
+                min_extent_m * 1e3
+            ),
+        }
+    }
+}
+
+/// One stream of a source and what happened to it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StreamInfo {
+    /// The file or folder it came from.
+    pub file: String,
+    /// Its topic (and key: `/tf:hand`).
+    pub topic: String,
+    /// Samples as recorded.
+    pub samples: usize,
+    /// Last minus first stamp, seconds.
+    pub duration_s: f64,
+    /// The diagonal of its positions' bounding box, metres.
+    pub extent_m: f64,
+    /// Kept or skipped, and why.
+    pub status: StreamStatus,
+    /// The demonstrations it gave (parts after a break, segments).
+    pub demos: usize,
+}
+
+/// The user's choice for one stream, over the filter: include it even when
+/// the filter would skip it (`true`) or leave it out (`false`). Keyed by the
+/// stream's topic.
+pub type Overrides = BTreeMap<String, bool>;
+
+/// A source's demonstrations and the account of every stream.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Arranged {
+    /// The demonstrations, in load order.
+    pub demos: Vec<RawDemo>,
+    /// Every stream, in load order.
+    pub streams: Vec<StreamInfo>,
+    /// What the user should be told (skips, breaks, hints).
+    pub notices: Vec<Notice>,
+}
+
+/// How streams become demonstrations: the part of the loading options that
+/// works on streams already read.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Arrangement {
+    /// Which streams.
+    pub filter: StreamFilter,
+    /// What a break in time does.
+    pub gaps: GapPolicy,
+    /// What a demonstration is.
+    pub demos: Grouping,
+    /// Cut each demo's rests at its ends (reported either way).
+    pub trim_rest: bool,
+    /// What a rest is.
+    pub rest: SegmentSettings,
+    /// The unit the positions were read in (for the warning when their
+    /// size suggests another).
+    pub units: crate::load::units::Units,
+}
+
+impl Arrangement {
+    /// The arrangement of loading options.
+    pub fn of(options: &crate::load::mcap::LoadOptions) -> Self {
+        Self {
+            filter: options.streams.clone(),
+            gaps: options.gaps,
+            demos: options.demos,
+            trim_rest: options.trim_rest,
+            rest: options.rest,
+            units: options.units,
+        }
+    }
+}
+
+/// Arranges the streams of one source (all from one file or folder).
+pub fn arrange(
+    streams: Vec<RawDemo>,
+    how: &Arrangement,
+    overrides: &Overrides,
+) -> Result<Arranged> {
+    let mut out = Arranged::default();
+    let min = how.filter.min_extent_m;
+    let mut chosen = Vec::new();
+    for stream in streams {
+        let mut info = StreamInfo {
+            file: stream.file.clone(),
+            topic: stream.topic.clone(),
+            samples: stream.stamps_ns.len(),
+            duration_s: stream.duration_s(),
+            extent_m: stream.extent_m(),
+            status: StreamStatus::Kept,
+            demos: 0,
+        };
+        info.status = match overrides.get(&stream.topic) {
+            Some(true) => StreamStatus::Kept,
+            Some(false) => StreamStatus::Excluded("unticked".to_owned()),
+            None => judge(&stream, &info, &how.filter),
+        };
+        if !info.status.kept() {
+            let level = match info.status {
+                StreamStatus::Excluded(_) | StreamStatus::NotSelected => Notice::info,
+                _ => Notice::warning,
+            };
+            out.notices.push(level(format!(
+                "{}: {}: skipped: {}",
+                info.file,
+                info.topic,
+                info.status.reason(min)
+            )));
+            out.streams.push(info);
+            continue;
+        }
+        let forced = overrides.get(&stream.topic) == Some(&true);
+        let (parts, said) = gaps::apply(vec![stream], how.gaps);
+        out.notices.extend(said);
+        let split = parts.len() > 1;
+        let mut kept_parts = 0;
+        for part in parts {
+            let still = part.extent_m() < min;
+            if split && !forced && (still || no_time(&part)) {
+                // A part of a split stream is judged as a demo on its own.
+                let why = if still {
+                    StreamStatus::Still(part.extent_m())
+                } else {
+                    StreamStatus::NoTime
+                };
+                out.notices.push(Notice::warning(format!(
+                    "{}: {}: skipped: {}",
+                    part.file,
+                    part.name,
+                    why.reason(min)
+                )));
+                continue;
+            }
+            kept_parts += 1;
+            chosen.push((out.streams.len(), part));
+        }
+        info.demos = kept_parts;
+        out.streams.push(info);
+    }
+    if !matches!(how.demos, Grouping::Segmented(_)) {
+        for (_, part) in &chosen {
+            if let Some(n) = movements(part)
+                && n > 1
+            {
+                out.notices.push(Notice::info(format!(
+                    "{}: {}: holds {n} movements between rest periods: --demos segment \
+                     (the app's Loading: demos per segment) cuts it into demos",
+                    part.file, part.topic
+                )));
+            }
+        }
+    }
+    let (owners, parts): (Vec<usize>, Vec<RawDemo>) = chosen.into_iter().unzip();
+    let (demos, said) = group_noting(parts, &how.demos)?;
+    out.demos = demos;
+    out.notices.extend(said);
+    if !matches!(how.demos, Grouping::PerTopic) {
+        // Segments and per-file choices no longer map one-to-one to parts.
+        for i in owners {
+            out.streams[i].demos = 0;
+        }
+        for demo in &out.demos {
+            // A segment's topic is its stream's with `#k`.
+            let stream_topic = demo
+                .topic
+                .rsplit_once('#')
+                .filter(|(_, k)| k.parse::<usize>().is_ok())
+                .map_or(demo.topic.as_str(), |(head, _)| head);
+            if let Some(s) = out.streams.iter_mut().find(|s| {
+                (s.topic == demo.topic || s.topic == stream_topic)
+                    && s.file == demo.file
+                    && s.status.kept()
+            }) {
+                s.demos += 1;
+            }
+        }
+    }
+    let rests = crate::arrange::rest::apply(&mut out.demos, &how.rest, how.trim_rest);
+    out.notices.extend(rests);
+    // Only demos: a map frame or an odometry stream far from the origin
+    // that was skipped says nothing about the units.
+    let odd_size = out
+        .demos
+        .iter()
+        .filter_map(|d| crate::load::units::suspect(d, how.units));
+    out.notices.extend(odd_size.collect::<Vec<_>>());
+    Ok(out)
+}
+
+fn judge(stream: &RawDemo, info: &StreamInfo, filter: &StreamFilter) -> StreamStatus {
+    if let Some(p) = filter
+        .exclude
+        .iter()
+        .find(|p| matches_stream(p, &stream.topic))
+    {
+        return StreamStatus::Excluded(format!("--exclude {p}"));
+    }
+    if !filter.topics.is_empty()
+        && !filter
+            .topics
+            .iter()
+            .any(|p| matches_stream(p, &stream.topic))
+    {
+        return StreamStatus::NotSelected;
+    }
+    if no_time(stream) {
+        return StreamStatus::NoTime;
+    }
+    if info.extent_m < filter.min_extent_m {
+        return StreamStatus::Still(info.extent_m);
+    }
+    StreamStatus::Kept
+}
+
+fn no_time(stream: &RawDemo) -> bool {
+    stream
+        .stamps_ns
+        .first()
+        .is_none_or(|first| stream.stamps_ns.iter().all(|t| t == first))
+}
+
+/// How many movements between rest periods a stream holds (default
+/// segmentation), when that can be said.
+fn movements(stream: &RawDemo) -> Option<usize> {
+    let settings = SegmentSettings::default();
+    let total = stream.duration_s();
+    // A single reach has no room for two movements and a rest between.
+    if total < 2.0 * settings.min_segment_s + settings.min_rest_s {
+        return None;
+    }
+    find_segments(stream, &settings).ok().map(|s| s.len())
+}
+
+/// Whether `pattern` matches a stream called `topic` (`/tf:hand`): the
+/// whole, the part before the key, or the key.
+pub fn matches_stream(pattern: &str, topic: &str) -> bool {
+    if glob(pattern, topic) {
+        return true;
+    }
+    match topic.split_once(':') {
+        Some((base, key)) => glob(pattern, base) || glob(pattern, key),
+        None => false,
+    }
+}
+
+/// Glob matching with `*` (any run) and `?` (one character).
+pub fn glob(pattern: &str, text: &str) -> bool {
+    let p: Vec<char> = pattern.chars().collect();
+    let t: Vec<char> = text.chars().collect();
+    let (mut pi, mut ti) = (0, 0);
+    let mut star: Option<(usize, usize)> = None;
+    while ti < t.len() {
+        if pi < p.len() && (p[pi] == '?' || p[pi] == t[ti]) {
+            pi += 1;
+            ti += 1;
+        } else if pi < p.len() && p[pi] == '*' {
+            star = Some((pi, ti));
+            pi += 1;
+        } else if let Some((sp, st)) = star {
+            pi = sp + 1;
+            ti = st + 1;
+            star = Some((sp, st + 1));
+        } else {
+            return false;
+        }
+    }
+    p[pi..].iter().all(|&c| c == '*')
+}
+
+/// Makes demonstration names unique across everything loaded: names that
+/// collide are qualified by the shortest run of parent folders that tells
+/// their files apart (`a/bag.mcap:/hand`, `b/bag.mcap:/hand`); names that
+/// still collide (the same file twice) get ` (2)`, ` (3)`.
+pub fn unique_names(demos: &mut [RawDemo]) {
+    let mut by_name: HashMap<String, Vec<usize>> = HashMap::new();
+    for (i, d) in demos.iter().enumerate() {
+        by_name.entry(d.name.clone()).or_default().push(i);
+    }
+    let mut groups: Vec<Vec<usize>> = by_name.into_values().filter(|g| g.len() > 1).collect();
+    groups.sort();
+    for group in groups {
+        let files: Vec<Vec<String>> = group
+            .iter()
+            .map(|&i| {
+                std::path::Path::new(&demos[i].file)
+                    .components()
+                    .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                    .collect()
+            })
+            .collect();
+        let depth = files.iter().map(Vec::len).max().unwrap_or(1);
+        let qualified = |k: usize| -> Vec<String> {
+            files
+                .iter()
+                .map(|parts| parts[parts.len().saturating_sub(k)..].join("/"))
+                .collect()
+        };
+        let mut chosen = None;
+        for k in 2..=depth {
+            let q = qualified(k);
+            let mut seen = q.clone();
+            seen.sort();
+            seen.dedup();
+            if seen.len() == q.len() {
+                chosen = Some(q);
+                break;
+            }
+        }
+        for (n, &i) in group.iter().enumerate() {
+            let demo = &mut demos[i];
+            let file_name = files[n].last().cloned().unwrap_or_default();
+            match &chosen {
+                Some(q) if demo.name.starts_with(&file_name) => {
+                    demo.name = format!("{}{}", q[n], &demo.name[file_name.len()..]);
+                }
+                _ if n > 0 => demo.name = format!("{} ({})", demo.name, n + 1),
+                _ => {}
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::load::demo::TimeSource;
+
+    fn stream(file: &str, topic: &str, extent: f64, n: usize) -> RawDemo {
+        RawDemo {
+            name: format!("{}:{topic}", file.rsplit('/').next().unwrap_or(file)),
+            file: file.into(),
+            topic: topic.into(),
+            stamps_ns: (0..n as i64).map(|i| i * 11_000_000).collect(),
+            positions: (0..n)
+                .map(|i| [extent * i as f64 / (n.max(2) - 1) as f64, 0.0, 0.0].into())
+                .collect(),
+            orientations: None,
+            time_source: TimeSource::HeaderStamp,
+        }
+    }
+
+    fn how(filter: StreamFilter, demos: Grouping) -> Arrangement {
+        Arrangement {
+            filter,
+            gaps: GapPolicy::Split,
+            demos,
+            trim_rest: false,
+            rest: SegmentSettings::default(),
+            units: crate::load::units::Units::M,
+        }
+    }
+
+    #[test]
+    fn globs_match_topics_keys_and_wildcards() {
+        assert!(glob("/vive/*", "/vive/hand"));
+        assert!(glob("*hand?", "/left_hand1"));
+        assert!(!glob("/vive/*", "/tf"));
+        assert!(glob("*", ""));
+        assert!(matches_stream("/tf", "/tf:tracker"));
+        assert!(matches_stream("track*", "/tf:tracker"));
+        assert!(!matches_stream("/tf_static", "/tf:tracker"));
+        assert!(glob("/händ", "/händ"));
+    }
+
+    #[test]
+    fn still_static_and_unchosen_streams_are_skipped_each_with_a_reason() {
+        let streams = vec![
+            stream("bag.mcap", "/hand", 0.4, 200),
+            stream("bag.mcap", "/tf:base_link", 0.002, 200),
+            stream("bag.mcap", "/tf_static:cam", 0.0, 1),
+            stream("bag.mcap", "/goal_pose", 0.3, 1),
+            stream("bag.mcap", "/other", 0.4, 200),
+        ];
+        let filter = StreamFilter {
+            exclude: vec!["/other".into()],
+            ..StreamFilter::default()
+        };
+        let got = arrange(streams, &how(filter, Grouping::PerTopic), &Overrides::new())
+            .expect("arranged");
+        assert_eq!(got.demos.len(), 1);
+        assert_eq!(got.demos[0].topic, "/hand");
+        let status: Vec<&StreamStatus> = got.streams.iter().map(|s| &s.status).collect();
+        assert_eq!(status[0], &StreamStatus::Kept);
+        assert!(matches!(status[1], StreamStatus::Still(s) if (s - 0.002).abs() < 1e-12));
+        assert_eq!(status[2], &StreamStatus::NoTime);
+        assert_eq!(status[3], &StreamStatus::NoTime);
+        assert_eq!(
+            status[4],
+            &StreamStatus::Excluded("--exclude /other".into())
+        );
+        assert_eq!(got.notices.len(), 4);
+        assert!(
+            got.notices[0]
+                .text
+                .contains("bag.mcap: /tf:base_link: skipped: it does not move"),
+            "{}",
+            got.notices[0].text
+        );
+        assert!(got.notices[1].text.contains("stamp never advances"));
+        // An override brings a still stream back, and unticks a kept one.
+        let overrides = Overrides::from([
+            ("/tf:base_link".to_owned(), true),
+            ("/hand".to_owned(), false),
+        ]);
+        let streams = vec![
+            stream("bag.mcap", "/hand", 0.4, 200),
+            stream("bag.mcap", "/tf:base_link", 0.002, 200),
+        ];
+        let got = arrange(
+            streams,
+            &how(StreamFilter::default(), Grouping::PerTopic),
+            &overrides,
+        )
+        .expect("arranged");
+        assert_eq!(got.demos.len(), 1);
+        assert_eq!(got.demos[0].topic, "/tf:base_link");
+    }
+
+    #[test]
+    fn topic_patterns_choose_and_per_file_takes_the_stream_that_moves_most() {
+        let streams = vec![
+            stream("a.mcap", "/tf:base", 0.02, 200),
+            stream("a.mcap", "/tf:hand", 0.5, 200),
+            stream("a.mcap", "/vive/left", 0.3, 200),
+        ];
+        let filter = StreamFilter {
+            topics: vec!["/tf".into()],
+            ..StreamFilter::default()
+        };
+        let got = arrange(
+            streams.clone(),
+            &how(filter, Grouping::PerTopic),
+            &Overrides::new(),
+        )
+        .expect("arranged");
+        assert_eq!(got.demos.len(), 2);
+        assert_eq!(got.streams[2].status, StreamStatus::NotSelected);
+        let got = arrange(
+            streams,
+            &how(StreamFilter::default(), Grouping::PerFile),
+            &Overrides::new(),
+        )
+        .expect("arranged");
+        assert_eq!(got.demos.len(), 1);
+        assert_eq!(got.demos[0].topic, "/tf:hand");
+        assert_eq!(got.demos[0].name, "a.mcap");
+        assert_eq!(got.streams[1].demos, 1);
+        assert_eq!(got.streams[0].demos, 0);
+    }
+
+    #[test]
+    fn colliding_names_are_qualified_by_the_shortest_distinguishing_folder() {
+        let mut demos = vec![
+            stream("/data/day1/reach.mcap", "/hand", 0.4, 10),
+            stream("/data/day2/reach.mcap", "/hand", 0.4, 10),
+            stream("/data/day2/other.mcap", "/hand", 0.4, 10),
+            stream("/data/day2/other.mcap", "/hand", 0.4, 10),
+        ];
+        unique_names(&mut demos);
+        let names: Vec<&str> = demos.iter().map(|d| d.name.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "day1/reach.mcap:/hand",
+                "day2/reach.mcap:/hand",
+                "other.mcap:/hand",
+                "other.mcap:/hand (2)"
+            ]
+        );
+    }
+}

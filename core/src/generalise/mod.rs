@@ -1,0 +1,8 @@
+//! Generalise: a fitted DMP run somewhere else (method.md section 10): a
+//! new start, goal and duration for one demo's DMP ([`primitive`]), and one
+//! skill from many demos ([`skill`]).
+//!
+//! May use: landscape, fit, prepare.
+
+pub mod primitive;
+pub mod skill;
