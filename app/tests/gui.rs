@@ -267,8 +267,8 @@ fn a_continuous_take_shows_its_timeline_and_new_thresholds_recut_it() {
         bytes: csv.into_bytes().into(),
     };
     let mut settings = Settings::with_grid_points(16);
-    settings.load.demos = dmpscope_core::arrange::group::Grouping::Segmented(
-        dmpscope_core::arrange::segment::SegmentSettings::default(),
+    settings.load.demos = dmpscope_core::load::options::Grouping::Segmented(
+        dmpscope_core::load::options::SegmentSettings::default(),
     );
     let mut h = Harness::builder()
         .with_size([1280.0, 800.0])
@@ -281,7 +281,7 @@ fn a_continuous_take_shows_its_timeline_and_new_thresholds_recut_it() {
         h.get_by_label("speed [m/s] over time [s]: 3 segments (shaded), rest below the line");
     let _count = h.get_by_label_contains("spans 400 mm: 3 demos");
     // A shortest demo longer than each reach leaves none.
-    if let dmpscope_core::arrange::group::Grouping::Segmented(seg) =
+    if let dmpscope_core::load::options::Grouping::Segmented(seg) =
         &mut h.state_mut().settings.load.demos
     {
         seg.min_segment_s = 2.0;

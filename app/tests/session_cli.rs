@@ -5,7 +5,7 @@
 mod support;
 
 use dmpscope::session::{Command, Runner, Session, Settings, Source, Status};
-use dmpscope_core::load::mcap::UpAxis;
+use dmpscope_core::load::options::UpAxis;
 use serde_json::Value;
 use support::{dmpscope, repo, rosbag2_folder, text, tmp_path};
 

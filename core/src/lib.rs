@@ -43,6 +43,7 @@ pub mod rng;
 pub mod rotation;
 pub mod synth;
 
+pub use arrange::streams::load_source;
 pub use error::{Error, Result};
 pub use extract::optimum::{Extraction, extract};
 pub use fit::mapping::{Mapping, Scaling};
@@ -57,4 +58,5 @@ pub use notice::{Level, Notice};
 pub use pipeline::{Built, Unusable, build_model};
 pub use prepare::demo::{DEFAULT_GRID_POINTS, PrepSettings, PreparedDemo, prepare};
 pub use report::presets::{PAPER_PRESETS, Preset};
-pub use report::summary::{Report, TableRow};
+pub use report::summary::Report;
+pub use report::table::TableRow;

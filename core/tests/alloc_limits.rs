@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use common::{first_chunk, load, mcap_of, raw_mcap, reach, records};
 use dmpscope_core::Result;
-use dmpscope_core::load::mcap::Loaded;
+use dmpscope_core::load::collect::Loaded;
 use dmpscope_core::load::mcap::RECORD_LENGTH_LIMIT;
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 

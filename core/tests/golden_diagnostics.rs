@@ -17,7 +17,7 @@ use dmpscope_core::extract::diagnostics::balance::depth;
 use dmpscope_core::extract::diagnostics::resample::percentiles;
 use dmpscope_core::extract::diagnostics::{DiagSettings, DiagnosticsJob};
 use dmpscope_core::landscape::grid::{Axis, AxisScale, FillOrder, Grid, LandscapeJob};
-use dmpscope_core::report::summary::TableRow;
+use dmpscope_core::report::table::TableRow;
 use golden_data::{close, f, fs, golden, model};
 
 const EXACT: f64 = 1e-9;

@@ -14,7 +14,7 @@ use dmpscope_core::extract::allowed::{Allowed, PickRule, PickSettings, e_depth};
 use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::landscape::grid;
 use dmpscope_core::landscape::grid::{Axis, AxisScale, Grid, Landscape};
-use dmpscope_core::synth::planted::PlantedSpec;
+use dmpscope_core::synth::planted_forcing::PlantedSpec;
 use dmpscope_core::{
     Model, PrepSettings, Quantity, RawDemo, Scaling, SkillMode, Unusable, build_model, extract,
 };

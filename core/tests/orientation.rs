@@ -12,8 +12,9 @@ use dmpscope_core::geom::{Quat, Vec3, quat_from_xyzw, xyzw};
 use dmpscope_core::load::csv::load_csv;
 use dmpscope_core::load::decode::ros2::StampedTransform;
 use dmpscope_core::load::decode::{ros1, ros2};
-use dmpscope_core::load::mcap::UpAxis;
-use dmpscope_core::load::mcap::{LoadOptions, load_bytes, load_bytes_with};
+use dmpscope_core::load::mcap::{load_bytes, load_bytes_with};
+use dmpscope_core::load::options::LoadOptions;
+use dmpscope_core::load::options::UpAxis;
 use dmpscope_core::{RawDemo, TimeSource};
 use mcap::records::MessageHeader;
 
@@ -363,10 +364,12 @@ fn sorting_and_cutting_keep_each_orientation_with_its_sample() {
 
 #[test]
 fn foxglove_poses_hand_on_their_orientation() {
-    use dmpscope_core::load::decode::foxglove_json::encode_pose_in_frame_json;
-    use dmpscope_core::load::decode::foxglove_schemas::{
-        EncodedTopic, FoxgloveEncoding, FoxgloveSchema, encode_pose_in_frame_proto, write_encoded,
-    };
+    use dmpscope_core::export::foxglove::EncodedTopic;
+    use dmpscope_core::export::foxglove::FoxgloveEncoding;
+    use dmpscope_core::export::foxglove::encode_pose_in_frame_proto;
+    use dmpscope_core::export::foxglove::write_encoded;
+    use dmpscope_core::export::foxglove_json::encode_pose_in_frame_json;
+    use dmpscope_core::load::decode::foxglove_schemas::FoxgloveSchema;
     for encoding in [FoxgloveEncoding::Protobuf, FoxgloveEncoding::Json] {
         let messages: Vec<(i64, Vec<u8>)> = (0..N)
             .map(|k| {

@@ -120,7 +120,7 @@ fn quaternion_sign_flips_change_nothing() {
 }
 
 fn planted_raw() -> Vec<RawDemo> {
-    let spec = dmpscope_core::synth::planted::PlantedSpec {
+    let spec = dmpscope_core::synth::planted_forcing::PlantedSpec {
         dm: 10.73,
         km: 20.71,
         noise_m: 1e-4,

@@ -1,9 +1,10 @@
 //! The pipeline's policy for unusable demos, and `load_source` on what a
 //! user can name: bytes, a CSV, a folder, a rosbag2 `metadata.yaml`.
 
+use dmpscope_core::arrange::streams::load_source;
 use dmpscope_core::geom::Vec3;
-use dmpscope_core::load::mcap::{LoadOptions, UpAxis};
-use dmpscope_core::load::source::{SourceData, load_source};
+use dmpscope_core::load::options::{LoadOptions, UpAxis};
+use dmpscope_core::load::source::SourceData;
 use dmpscope_core::{Error, Level, PrepSettings, RawDemo, TimeSource, Unusable, build_model};
 
 fn sample() -> Vec<RawDemo> {

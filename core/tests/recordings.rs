@@ -9,11 +9,12 @@ use std::collections::BTreeMap;
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
+use dmpscope_core::arrange::streams::load_source;
 use dmpscope_core::arrange::streams::{StreamStatus, unique_names};
 use dmpscope_core::load::decode::ros2;
 use dmpscope_core::load::decode::ros2::StampedTransform;
-use dmpscope_core::load::mcap::LoadOptions;
-use dmpscope_core::load::source::{SourceData, load_source};
+use dmpscope_core::load::options::LoadOptions;
+use dmpscope_core::load::source::SourceData;
 use dmpscope_core::{Level, RawDemo};
 use mcap::records::MessageHeader;
 
@@ -313,11 +314,11 @@ fn a_tf_bag_keeps_the_tracker_and_says_why_each_other_stream_is_skipped() {
     );
     // --topic / --exclude choose; per file takes the stream that moves most.
     let options = LoadOptions {
-        streams: dmpscope_core::arrange::streams::StreamFilter {
+        streams: dmpscope_core::load::options::StreamFilter {
             exclude: vec!["/abort*".into()],
             ..Default::default()
         },
-        demos: dmpscope_core::arrange::group::Grouping::PerFile,
+        demos: dmpscope_core::load::options::Grouping::PerFile,
         ..Default::default()
     };
     let loaded = load_source("tf.mcap", SourceData::Bytes(&tf_bag()), &options).expect("loads");
@@ -550,8 +551,10 @@ fn a_fixed_frame_composes_tf_and_tf_static_into_one_frame() {
 
 #[test]
 fn a_fixed_frame_composes_foxglove_frame_transforms_too() {
-    use dmpscope_core::load::decode::foxglove_json::{encode_frame_transforms_json, json_schema};
-    use dmpscope_core::load::decode::foxglove_schemas::{FoxgloveSchema, Transform};
+    use dmpscope_core::export::foxglove_json::Transform;
+    use dmpscope_core::export::foxglove_json::encode_frame_transforms_json;
+    use dmpscope_core::export::foxglove_json::json_schema;
+    use dmpscope_core::load::decode::foxglove_schemas::FoxgloveSchema;
     let mut w = mcap::WriteOptions::new()
         .create(Cursor::new(Vec::new()))
         .expect("writer");

@@ -11,7 +11,7 @@ use std::sync::Arc;
 use dmpscope_core::extract::diagnostics::{DiagSettings, DiagnosticsJob};
 use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::landscape::grid::{FillOrder, Grid, LandscapeJob};
-use dmpscope_core::synth::planted::PlantedSpec;
+use dmpscope_core::synth::planted_forcing::PlantedSpec;
 use dmpscope_core::{Extraction, Model, PrepSettings, RawDemo, Unusable, build_model, extract};
 
 /// The model, its extraction and the cheap diagnostics (no resampling).

@@ -8,8 +8,9 @@
 
 use std::path::{Path, PathBuf};
 
-use dmpscope_core::load::mcap::LoadOptions;
-use dmpscope_core::load::source::{SourceData, load_source, load_streams};
+use dmpscope_core::arrange::streams::load_source;
+use dmpscope_core::load::options::LoadOptions;
+use dmpscope_core::load::source::{SourceData, load_streams};
 use dmpscope_core::{Error, RawDemo};
 
 fn bags() -> PathBuf {

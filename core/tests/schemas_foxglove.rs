@@ -9,19 +9,28 @@ use std::collections::BTreeMap;
 use std::io::Cursor;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
+use dmpscope_core::export::foxglove::EncodedTopic;
+use dmpscope_core::export::foxglove::FoxgloveEncoding;
+use dmpscope_core::export::foxglove::descriptor_set;
+use dmpscope_core::export::foxglove::descriptor_set_bytes;
+use dmpscope_core::export::foxglove::encode_frame_transform_proto;
+use dmpscope_core::export::foxglove::encode_frame_transforms_proto;
+use dmpscope_core::export::foxglove::encode_pose_in_frame_proto;
+use dmpscope_core::export::foxglove::encode_poses_in_frame_proto;
+use dmpscope_core::export::foxglove::write_encoded;
+use dmpscope_core::export::foxglove::write_pose_in_frame_json;
+use dmpscope_core::export::foxglove_json::Transform;
+use dmpscope_core::export::foxglove_json::encode_frame_transform_json;
+use dmpscope_core::export::foxglove_json::encode_frame_transforms_json;
+use dmpscope_core::export::foxglove_json::encode_pose_in_frame_json;
+use dmpscope_core::export::foxglove_json::encode_poses_in_frame_json;
+use dmpscope_core::export::foxglove_json::json_schema;
 use dmpscope_core::export::write::{TopicSamples, write_pose_stamped};
-use dmpscope_core::load::decode::foxglove_json::{
-    encode_frame_transform_json, encode_frame_transforms_json, encode_pose_in_frame_json,
-    encode_poses_in_frame_json, json_schema,
-};
-use dmpscope_core::load::decode::foxglove_schemas::{
-    EncodedTopic, FoxgloveEncoding, FoxgloveSchema, Transform, descriptor_set,
-    descriptor_set_bytes, encode_frame_transform_proto, encode_frame_transforms_proto,
-    encode_pose_in_frame_proto, encode_poses_in_frame_proto, write_encoded,
-    write_pose_in_frame_json,
-};
+use dmpscope_core::load::collect::Loaded;
+use dmpscope_core::load::decode::foxglove_schemas::FoxgloveSchema;
 use dmpscope_core::load::decode::{ChannelSchema, MessageDecoder, PoseSample, decoder_for};
-use dmpscope_core::load::mcap::{LoadOptions, Loaded, load_bytes, load_bytes_with};
+use dmpscope_core::load::mcap::{load_bytes, load_bytes_with};
+use dmpscope_core::load::options::LoadOptions;
 use dmpscope_core::rng::Rng;
 use dmpscope_core::{Error, RawDemo, TimeSource};
 use mcap::records::MessageHeader;

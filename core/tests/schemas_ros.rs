@@ -11,11 +11,13 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use dmpscope_core::error::Location;
 use dmpscope_core::geom::Vec3;
+use dmpscope_core::load::collect::Loaded;
 use dmpscope_core::load::decode::ros2::StampedTransform;
 use dmpscope_core::load::decode::{
     ChannelSchema, MessageDecoder, PoseSample, decoder_for, ros1, ros2,
 };
-use dmpscope_core::load::mcap::{LoadOptions, Loaded, load_bytes, load_bytes_with};
+use dmpscope_core::load::mcap::{load_bytes, load_bytes_with};
+use dmpscope_core::load::options::LoadOptions;
 use dmpscope_core::{Error, TimeSource};
 use mcap::records::MessageHeader;
 

@@ -1,8 +1,10 @@
 //! Segmentation of one continuous recording into demonstrations, and the
 //! other groupings (per topic, per file).
 
-use dmpscope_core::arrange::group::{Grouping, group};
-use dmpscope_core::arrange::segment::{SegmentSettings, find_segments, split};
+use dmpscope_core::arrange::group::group;
+use dmpscope_core::arrange::segment::{find_segments, split};
+use dmpscope_core::load::options::Grouping;
+use dmpscope_core::load::options::SegmentSettings;
 use dmpscope_core::rng::Rng;
 use dmpscope_core::synth::vive::reach_demos;
 use dmpscope_core::{RawDemo, TimeSource};

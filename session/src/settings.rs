@@ -6,7 +6,7 @@
 use dmpscope_core::extract::diagnostics::DiagSettings;
 use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::landscape::grid::{AxisScale, Grid};
-use dmpscope_core::load::mcap::LoadOptions;
+use dmpscope_core::load::options::LoadOptions;
 use dmpscope_core::report::presets::PAPER_PRESETS;
 use dmpscope_core::{DEFAULT_K, PrepSettings};
 use serde::{Deserialize, Serialize};

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use std::sync::{Arc, LazyLock};
 
 use dmpscope_core::arrange::streams::{Arrangement, Overrides, StreamInfo, arrange};
-use dmpscope_core::load::mcap::{LoadOptions, UpAxis};
+use dmpscope_core::load::options::{LoadOptions, UpAxis};
 use dmpscope_core::load::source::{SourceData, SourceDemos, load_streams};
 use dmpscope_core::{Level, Notice, RawDemo};
 

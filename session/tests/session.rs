@@ -4,9 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use dmpscope_core::arrange::group::Grouping;
 use dmpscope_core::geom::Vec3;
-use dmpscope_core::load::mcap::UpAxis;
+use dmpscope_core::load::options::Grouping;
+use dmpscope_core::load::options::UpAxis;
 use dmpscope_session::{Command, Runner, Session, Settings, Source, StageRuns, Status};
 
 /// The repository root.
@@ -134,7 +134,7 @@ fn each_setting_recomputes_exactly_its_stages() {
     );
     // The sample has no break in time: bridging instead of splitting
     // regroups, and the same demos recompute nothing.
-    settings.load.gaps = dmpscope_core::arrange::gaps::GapPolicy::Keep;
+    settings.load.gaps = dmpscope_core::load::options::GapPolicy::Keep;
     check(
         &mut session,
         &settings,

@@ -4,13 +4,14 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use dmpscope_core::arrange::streams::load_source;
 use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::kernels::dispatch::{instruction_set, set_avx512};
 use dmpscope_core::landscape::grid as landscape;
 use dmpscope_core::landscape::grid::{Axis, Grid};
 use dmpscope_core::load::demo::median;
-use dmpscope_core::load::mcap::LoadOptions;
-use dmpscope_core::load::source::{SourceData, load_source};
+use dmpscope_core::load::options::LoadOptions;
+use dmpscope_core::load::source::SourceData;
 use dmpscope_core::{PrepSettings, Unusable};
 
 use super::inputs::model_of;

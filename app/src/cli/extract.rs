@@ -7,7 +7,8 @@ use std::sync::Arc;
 use dmpscope_core::Report;
 use dmpscope_core::extract::allowed::{Allowed, DEFAULT_EPS, PickRule, PickSettings};
 use dmpscope_core::extract::diagnostics::{DiagSettings, DiagnosticsJob};
-use dmpscope_core::report::summary::{Constrained, LoadingChoices, TableRow};
+use dmpscope_core::report::summary::{Constrained, LoadingChoices};
+use dmpscope_core::report::table::TableRow;
 
 use super::inputs::InputArgs;
 use super::landscape::{GridArgs, landscape_and_optimum};

@@ -6,7 +6,8 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use dmpscope_core::export::write::{BulkTopic, TopicSamples, write_pose_stamped_with_bulk};
-use dmpscope_core::synth::planted::{PlantedSpec, planted_demos};
+use dmpscope_core::synth::planted::planted_demos;
+use dmpscope_core::synth::planted_forcing::PlantedSpec;
 use dmpscope_core::synth::vive::reach_demos;
 
 /// Arguments of `gen-sample`.

@@ -1,5 +1,5 @@
 //! From command-line paths to a fitted model, through the same core calls
-//! the app makes: [`dmpscope_core::load::source::load_source`] for each FILE (a file or
+//! the app makes: [`dmpscope_core::arrange::streams::load_source`] for each FILE (a file or
 //! a folder) with the loading flags as [`LoadOptions`], demos pooled in
 //! command-line order, then [`dmpscope_core::build_model`] with the
 //! `--unusable` policy. Every default is the core's.
@@ -8,13 +8,15 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use dmpscope_core::SkillMode;
-use dmpscope_core::arrange::gaps::GapPolicy;
-use dmpscope_core::arrange::group::Grouping;
-use dmpscope_core::arrange::segment::{SegmentPick, SegmentSettings};
-use dmpscope_core::arrange::streams::{StreamFilter, unique_names};
+use dmpscope_core::arrange::streams::load_source;
+use dmpscope_core::arrange::streams::unique_names;
 use dmpscope_core::fit::settings::DmpSettings;
-use dmpscope_core::load::mcap::{LoadOptions, UpAxis};
-use dmpscope_core::load::source::{SourceData, load_source, load_streams};
+use dmpscope_core::load::options::GapPolicy;
+use dmpscope_core::load::options::Grouping;
+use dmpscope_core::load::options::StreamFilter;
+use dmpscope_core::load::options::{LoadOptions, UpAxis};
+use dmpscope_core::load::options::{SegmentPick, SegmentSettings};
+use dmpscope_core::load::source::{SourceData, load_streams};
 use dmpscope_core::load::units::Units;
 use dmpscope_core::{Model, PrepSettings, RawDemo, Unusable, build_model};
 

@@ -11,10 +11,11 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use dmpscope_core::export::dmp_doc::{DocContext, dmp_document};
 use dmpscope_core::export::recording::{
-    ExportPath, ROLE_REGENERATED, TopicNames, TrajectoryExport, demo_paths, write_export_mcap,
+    ExportPath, TopicNames, TrajectoryExport, demo_paths, write_export_mcap,
 };
 use dmpscope_core::export::ros_traj::{TimedOrientation, TimedPath};
 use dmpscope_core::fit::orientation;
+use dmpscope_core::load::formats::ROLE_REGENERATED;
 use dmpscope_core::report::text::{pad_right, width};
 use dmpscope_core::{Generalised, Model, Primitive, RawDemo, Scaling, Skill, Target, rotation};
 

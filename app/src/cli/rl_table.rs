@@ -4,6 +4,7 @@
 use std::fmt::Write as _;
 
 use dmpscope_core::rl::run::{RunReport, summarise};
+use dmpscope_core::rl::table::{CURVE_TITLE, RUN_COLUMNS, curve};
 use serde_json::json;
 
 /// A run as JSON.
@@ -20,59 +21,30 @@ pub fn json(o: &RunReport) -> serde_json::Value {
     })
 }
 
-fn curve(returns: &[f64]) -> String {
-    if returns.is_empty() {
-        return "-".into();
-    }
-    let at = |f: f64| returns[((returns.len() - 1) as f64 * f) as usize];
-    format!("{:.3} -> {:.3} -> {:.3}", at(0.0), at(0.5), at(1.0))
-}
-
 /// The table of runs, then one summary line per gain set.
 pub fn table(outcomes: &[RunReport]) -> String {
     let mut text = String::new();
-    let _ = writeln!(
-        text,
-        "{:<10} {:>8} {:>9} {:>5} {:>8} {:>9} {:>8} {:>8} {:>11} {:>6} {:>6} {:>8} {:>6}  learning curve (mean return: first -> middle -> last)",
-        "gains",
-        "D/M",
-        "K/M",
-        "seed",
-        "reached",
-        "error mm",
-        "d mm",
-        "a_peak",
-        "1st reach",
-        "at s",
-        "held",
-        "train s",
-        "stable"
-    );
+    let line = |cells: Vec<String>, last: &str| {
+        let parts: Vec<String> = RUN_COLUMNS
+            .iter()
+            .zip(cells)
+            .map(|(c, cell)| {
+                if c.left {
+                    format!("{cell:<w$}", w = c.width)
+                } else {
+                    format!("{cell:>w$}", w = c.width)
+                }
+            })
+            .collect();
+        format!("{}  {last}\n", parts.join(" "))
+    };
+    text.push_str(&line(
+        RUN_COLUMNS.iter().map(|c| c.title.to_owned()).collect(),
+        CURVE_TITLE,
+    ));
     for o in outcomes {
-        let (fd, fs) = o.first_reach.map_or(("-".to_owned(), "-".to_owned()), |f| {
-            (f.decisions.to_string(), format!("{:.1}", f.seconds))
-        });
-        let held = o
-            .held
-            .map_or("-".to_owned(), |h| format!("{:.0}%", 100.0 * h));
-        let _ = writeln!(
-            text,
-            "{:<10} {:>8.3} {:>9.3} {:>5} {:>8} {:>9.3} {:>8.3} {:>8.2} {:>11} {:>6} {:>6} {:>8.1} {:>6}  {}",
-            o.name,
-            o.dm,
-            o.km,
-            o.seed,
-            if o.reached { "yes" } else { "no" },
-            o.greedy.final_error * 1e3,
-            o.d * 1e3,
-            o.greedy.a_peak(),
-            fd,
-            fs,
-            held,
-            o.seconds,
-            if o.diverged { "no" } else { "yes" },
-            curve(&o.returns)
-        );
+        let cells = RUN_COLUMNS.iter().map(|c| (c.cell)(o)).collect();
+        text.push_str(&line(cells, &curve(&o.returns)));
     }
     if outcomes.len() > 1 {
         text.push('\n');

@@ -6,7 +6,8 @@
 //! (each the largest of its run, so no peak is lost).
 
 use dmpscope_core::RawDemo;
-use dmpscope_core::arrange::segment::{SegmentSettings, find_segments, speeds};
+use dmpscope_core::arrange::segment::{find_segments, speeds};
+use dmpscope_core::load::options::SegmentSettings;
 use eframe::egui::{self, Color32};
 use egui_plot::{HLine, Line, Plot, PlotPoints, Span};
 

@@ -2,7 +2,7 @@
 //! the session's: the selected demo, the time cursor, the 3D camera, the
 //! heat maps' textures, the RL panel's choices, text being typed.
 
-use dmpscope_core::arrange::segment::SegmentSettings;
+use dmpscope_core::load::options::SegmentSettings;
 use eframe::{egui, egui_wgpu};
 
 use super::commands::Map;

@@ -6,28 +6,14 @@
 //! part is judged as a demo on its own; [`GapPolicy::Keep`] bridges it.
 //! Either way the user is told where and how long.
 
-use serde::{Deserialize, Serialize};
-
 use crate::load::demo::RawDemo;
+use crate::load::options::GapPolicy;
 use crate::notice::Notice;
 
 /// The shortest step that is a break, seconds.
 pub const MIN_GAP_S: f64 = 0.1;
 /// A break is also at least this many median intervals long.
 pub const GAP_INTERVALS: f64 = 10.0;
-
-/// What to do with a break inside a stream.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum GapPolicy {
-    /// Split the stream there: each part is a demo of its own (the
-    /// default).
-    #[default]
-    Split,
-    /// Keep the stream whole (preparation bridges a gap by interpolation;
-    /// a backwards jump is sorted into place), with a warning.
-    Keep,
-}
 
 /// One break in a stream.
 #[derive(Clone, Copy, Debug, PartialEq)]

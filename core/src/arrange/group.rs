@@ -2,27 +2,11 @@
 //! topics such as TF child frames), one per file, or the segments of
 //! continuous recordings.
 
-use serde::{Deserialize, Serialize};
-
-use crate::arrange::segment::{SegmentSettings, split};
+use crate::arrange::segment::split;
 use crate::error::Result;
 use crate::load::demo::RawDemo;
+use crate::load::options::Grouping;
 use crate::notice::Notice;
-
-/// How loaded streams become demonstrations.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Grouping {
-    /// Each topic is a demo; a multi-pose topic gives one per key (TF child
-    /// frame, pose index). The default.
-    #[default]
-    PerTopic,
-    /// Each file is a demo: the stream that moves most (the largest span of
-    /// its positions; the first in name order of equals).
-    PerFile,
-    /// Each stream is a continuous recording cut at rest periods.
-    Segmented(SegmentSettings),
-}
 
 /// Applies a grouping to streams in load order (files, then names).
 pub fn group(streams: Vec<RawDemo>, grouping: &Grouping) -> Result<Vec<RawDemo>> {

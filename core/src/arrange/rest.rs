@@ -5,8 +5,9 @@
 //! reported always; cut only when asked (`--trim-rest`), since cutting
 //! changes what unit time spans and so every number after it.
 
-use crate::arrange::segment::{SegmentSettings, speeds};
+use crate::arrange::segment::speeds;
 use crate::load::demo::RawDemo;
+use crate::load::options::SegmentSettings;
 use crate::notice::Notice;
 
 /// The rests found at a demo's ends.

@@ -3,111 +3,12 @@
 //! demonstration ends and the next begins. Fragments too short to be a
 //! demonstration are dropped.
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::geom::Vec3;
 use crate::load::demo::RawDemo;
-
-/// Which of a recording's segments are demonstrations.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SegmentPick {
-    /// Every segment (the default).
-    #[default]
-    All,
-    /// The first movement of each recording (the reach of a
-    /// reach-and-return trial).
-    First,
-    /// The last movement of each recording.
-    Last,
-    /// The N-th movement (1-based) of each recording.
-    Nth(usize),
-}
-
-impl SegmentPick {
-    /// The segments kept of `all` (in time order).
-    pub fn pick<T>(self, mut all: Vec<T>) -> Vec<T> {
-        match self {
-            Self::All => all,
-            Self::First => all.into_iter().take(1).collect(),
-            Self::Last => all.pop().into_iter().collect(),
-            Self::Nth(n) => all.into_iter().nth(n.wrapping_sub(1)).into_iter().collect(),
-        }
-    }
-
-    /// The choice as on the command line (`all`, `first`, `last`, `N`).
-    pub fn name(self) -> String {
-        match self {
-            Self::All => "all".into(),
-            Self::First => "first".into(),
-            Self::Last => "last".into(),
-            Self::Nth(n) => n.to_string(),
-        }
-    }
-
-    /// Parses `all`, `first`, `last` or a positive number.
-    pub fn parse(text: &str) -> std::result::Result<Self, String> {
-        match text {
-            "all" => Ok(Self::All),
-            "first" => Ok(Self::First),
-            "last" => Ok(Self::Last),
-            n => match n.parse::<usize>() {
-                Ok(n) if n >= 1 => Ok(Self::Nth(n)),
-                _ => Err(format!(
-                    "expected all, first, last or a segment number from 1, got {text:?}"
-                )),
-            },
-        }
-    }
-}
-
-/// Settings of the segmentation.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
-pub struct SegmentSettings {
-    /// Speed below which the hand is at rest, m/s.
-    pub rest_speed: f64,
-    /// Shortest rest that separates two demonstrations, seconds.
-    pub min_rest_s: f64,
-    /// Shortest demonstration kept, seconds.
-    pub min_segment_s: f64,
-    /// Width of the window the speed is measured over, seconds (longer is
-    /// less sensitive to tracker noise).
-    pub speed_window_s: f64,
-    /// Which segments of each recording are kept.
-    pub keep: SegmentPick,
-}
-
-impl Default for SegmentSettings {
-    fn default() -> Self {
-        Self {
-            rest_speed: 0.05,
-            min_rest_s: 0.2,
-            min_segment_s: 0.4,
-            speed_window_s: 0.05,
-            keep: SegmentPick::All,
-        }
-    }
-}
-
-impl SegmentSettings {
-    /// Checks the settings.
-    pub fn validate(&self) -> Result<()> {
-        let ok = |v: f64| v.is_finite() && v > 0.0;
-        if ok(self.rest_speed)
-            && ok(self.min_rest_s)
-            && ok(self.min_segment_s)
-            && ok(self.speed_window_s)
-        {
-            Ok(())
-        } else {
-            Err(Error::InvalidSetting(format!(
-                "segmentation settings must be positive: {self:?}"
-            )))
-        }
-    }
-}
+use crate::load::options::SegmentSettings;
 
 /// One demonstration found in a recording, as stamps of the recording.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]

@@ -5,48 +5,23 @@
 //! is skipped), then grouped ([`crate::group`]). Every stream is listed with
 //! what happened to it ([`StreamInfo`]), which the app's Recording panel
 //! shows; every skip is a notice naming file, topic and why. The CLI (through
-//! [`crate::load::source::load_source`]) and the app both arrange here.
+//! [`crate::arrange::streams::load_source`]) and the app both arrange here.
 
 use std::collections::{BTreeMap, HashMap};
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 use crate::arrange::gaps;
-use crate::arrange::gaps::GapPolicy;
-use crate::arrange::group::{Grouping, group_noting};
-use crate::arrange::segment::{SegmentSettings, find_segments};
+use crate::arrange::group::group_noting;
+use crate::arrange::segment::find_segments;
 use crate::error::Result;
 use crate::load::demo::RawDemo;
+use crate::load::options::GapPolicy;
+use crate::load::options::Grouping;
+use crate::load::options::SegmentSettings;
+use crate::load::options::{LoadOptions, StreamFilter, matches_stream};
+use crate::load::source::{SourceData, SourceDemos, load_streams};
 use crate::notice::Notice;
-
-/// The default least span of a stream's positions, metres (1 cm).
-pub const DEFAULT_MIN_EXTENT_M: f64 = 0.01;
-
-/// Which streams are demonstrations.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
-pub struct StreamFilter {
-    /// Keep only streams matching one of these glob patterns (`*`, `?`);
-    /// empty keeps all. A pattern matches a stream's topic (`/tf`), its
-    /// topic and key (`/tf:hand`) or its key (`hand`).
-    pub topics: Vec<String>,
-    /// Leave out streams matching one of these patterns (matched the same
-    /// way; wins over `topics`).
-    pub exclude: Vec<String>,
-    /// A stream whose positions span less than this (the diagonal of their
-    /// bounding box, metres) does not move and is skipped.
-    pub min_extent_m: f64,
-}
-
-impl Default for StreamFilter {
-    fn default() -> Self {
-        Self {
-            topics: Vec::new(),
-            exclude: Vec::new(),
-            min_extent_m: DEFAULT_MIN_EXTENT_M,
-        }
-    }
-}
 
 /// What happened to a stream.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -142,7 +117,7 @@ pub struct Arrangement {
 
 impl Arrangement {
     /// The arrangement of loading options.
-    pub fn of(options: &crate::load::mcap::LoadOptions) -> Self {
+    pub fn of(options: &LoadOptions) -> Self {
         Self {
             filter: options.streams.clone(),
             gaps: options.gaps,
@@ -314,40 +289,23 @@ fn movements(stream: &RawDemo) -> Option<usize> {
     find_segments(stream, &settings).ok().map(|s| s.len())
 }
 
-/// Whether `pattern` matches a stream called `topic` (`/tf:hand`): the
-/// whole, the part before the key, or the key.
-pub fn matches_stream(pattern: &str, topic: &str) -> bool {
-    if glob(pattern, topic) {
-        return true;
-    }
-    match topic.split_once(':') {
-        Some((base, key)) => glob(pattern, base) || glob(pattern, key),
-        None => false,
-    }
-}
-
-/// Glob matching with `*` (any run) and `?` (one character).
-pub fn glob(pattern: &str, text: &str) -> bool {
-    let p: Vec<char> = pattern.chars().collect();
-    let t: Vec<char> = text.chars().collect();
-    let (mut pi, mut ti) = (0, 0);
-    let mut star: Option<(usize, usize)> = None;
-    while ti < t.len() {
-        if pi < p.len() && (p[pi] == '?' || p[pi] == t[ti]) {
-            pi += 1;
-            ti += 1;
-        } else if pi < p.len() && p[pi] == '*' {
-            star = Some((pi, ti));
-            pi += 1;
-        } else if let Some((sp, st)) = star {
-            pi = sp + 1;
-            ti = st + 1;
-            star = Some((sp, st + 1));
-        } else {
-            return false;
-        }
-    }
-    p[pi..].iter().all(|&c| c == '*')
+/// Loads a source and arranges its streams into demonstrations
+/// ([`crate::arrange`]: the topic patterns, breaks in time split or
+/// bridged, still and timeless streams skipped, the grouping; method.md
+/// sections 1 and 11). Nothing crosses sources, so loading sources one by
+/// one and pooling them gives the same demonstrations as loading them
+/// together (pooled names are made unique by
+/// [`crate::arrange::streams::unique_names`]).
+pub fn load_source(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Result<SourceDemos> {
+    let mut loaded = load_streams(name, data, options)?;
+    let arranged = arrange(
+        std::mem::take(&mut loaded.demos),
+        &Arrangement::of(options),
+        &Overrides::new(),
+    )?;
+    loaded.notices.extend(arranged.notices);
+    loaded.demos = arranged.demos;
+    Ok(loaded)
 }
 
 /// Makes demonstration names unique across everything loaded: names that

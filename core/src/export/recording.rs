@@ -8,26 +8,15 @@ use std::io::{Seek, Write};
 
 use mcap::records::{MessageHeader, Metadata};
 
+use crate::export::foxglove_json::encode_pose_in_frame_json;
+use crate::export::foxglove_json::json_schema;
 use crate::export::ros_traj::{
     MULTI_DOF_NAME, PATH_NAME, TimedPath, encode_multi_dof, encode_path, multi_dof_schema,
     path_schema,
 };
 use crate::landscape::model::Model;
-use crate::load::decode::foxglove_json::{encode_pose_in_frame_json, json_schema};
 use crate::load::decode::foxglove_schemas::FoxgloveSchema;
-
-/// The channel metadata key holding a demo's name: loading an export gives
-/// the demo back under it.
-pub const NAME_KEY: &str = "dmpscope.name";
-/// The channel metadata key saying what a path is (`demonstration`,
-/// `regenerated`); a regenerated path is not loaded as a demo.
-pub const ROLE_KEY: &str = "dmpscope.role";
-/// The role of a regenerated path.
-pub const ROLE_REGENERATED: &str = "regenerated";
-
-/// The role of an exported ROS trajectory (`nav_msgs/msg/Path`,
-/// `MultiDOFJointTrajectory`); never loaded as a demo.
-pub const ROLE_TRAJECTORY: &str = "trajectory";
+use crate::load::formats::{NAME_KEY, ROLE_KEY, ROLE_REGENERATED, ROLE_TRAJECTORY};
 
 /// A path to export: its topic and `(stamp_ns, position)` samples.
 pub struct ExportPath {

@@ -84,17 +84,6 @@ pub struct OrientationTarget {
     pub goal: Q,
 }
 
-/// Integrates the orientation DMP with the fitted forcing term of `proj`
-/// at `(dm, km)` from `target` (method.md section 12).
-pub fn rollout(
-    proj: &Projections,
-    dm: f64,
-    km: f64,
-    target: OrientationTarget,
-) -> OrientationRollout {
-    rollout_forcing(&forcing_at(proj, dm, km), dm, km, target)
-}
-
 /// The fitted forcing term `F0 + D F1 + K F2` on the grid.
 pub fn forcing_at(proj: &Projections, dm: f64, km: f64) -> Vec<[f64; 3]> {
     proj.f
@@ -106,98 +95,6 @@ pub fn forcing_at(proj: &Projections, dm: f64, km: f64) -> Vec<[f64; 3]> {
             })
         })
         .collect()
-}
-
-/// Integrates the orientation DMP with a forcing term on the grid (the
-/// kernel's steps: [`crate::orientation_kernel`]).
-pub fn rollout_forcing(
-    forcing: &[[f64; 3]],
-    dm: f64,
-    km: f64,
-    target: OrientationTarget,
-) -> OrientationRollout {
-    use crate::kernels::orientation::{KeepPath, Lanes, Observe as _, Start};
-    let n = forcing.len();
-    let dt = 1.0 / (n.max(2) - 1) as f64;
-    let mut lanes = Lanes::<1>::new(Start::new(target.start, target.w0, target.goal));
-    let mut keep = KeepPath::new(target.start, target.goal, n);
-    for (k, f) in forcing.iter().enumerate() {
-        keep.before(k, &lanes);
-        // -0.0, not 0.0: `v + D (-0) + K (-0)` is `v` to the bit, a `-0`
-        // included, as the kernel's `F0 + D F1 + K F2` with the same sum.
-        let parts = f.map(|v| [v, -0.0, -0.0]);
-        let a = lanes.step(&parts, dm, &[wide::f64x4::splat(km)], dt);
-        keep.after(&a);
-    }
-    keep.into_path()
-}
-
-/// A demo's orientation DMP at one gain pair, to run at a new start and
-/// goal orientation (method.md section 12: the forcing term unchanged).
-#[derive(Clone, Debug, PartialEq)]
-pub struct OrientationPrimitive {
-    /// The forcing term on the grid.
-    pub forcing: Vec<[f64; 3]>,
-    /// LWR weights per axis at the primitive's gains.
-    pub weights: [Vec<f64>; 3],
-    /// The gains `(D/M, K/M)` it runs at: the position's, or the model's
-    /// separate orientation gains ([`crate::fit::settings::DmpSettings::orientation_gains`]).
-    pub gains: (f64, f64),
-    /// Its own start orientation (the smoothed `q(0)`).
-    pub start: Q,
-    /// Its own initial angular velocity, unit time.
-    pub w0: [f64; 3],
-    /// Its own goal orientation.
-    pub goal: Q,
-}
-
-impl OrientationPrimitive {
-    /// Demo `i`'s orientation DMP at the position gains `(dm, km)` (the
-    /// orientation's own where the model has them); `None` without one.
-    pub fn of_demo(model: &crate::Model, i: usize, dm: f64, km: f64) -> Option<Self> {
-        let prepared = model.demos().get(i)?.orientation.as_ref()?;
-        let proj = model.orientation_projections(i)?;
-        let (dm, km) = model.orientation_gains(dm, km);
-        Some(Self {
-            forcing: forcing_at(proj, dm, km),
-            weights: std::array::from_fn(|ax| proj.weights_at(ax, dm, km)),
-            gains: (dm, km),
-            start: prepared.q[0],
-            w0: prepared.w[0],
-            goal: prepared.goal,
-        })
-    }
-
-    /// The start and goal a run from `start` to `goal` (its own where
-    /// `None`) takes. A quaternion and its negative are one orientation, so
-    /// a new one is taken with the sign that keeps the rotation the demo
-    /// makes: a new start in its own start's hemisphere, a new goal in the
-    /// start's (the shorter way round). The demo's own goal keeps its sign:
-    /// a demo may turn further than 180 degrees.
-    pub fn ends(&self, start: Option<Q>, goal: Option<Q>) -> (Q, Q) {
-        let towards = |q: Q, other: Q| {
-            if rotation::dot(q, other) < 0.0 {
-                q.map(|c| -c)
-            } else {
-                q
-            }
-        };
-        let start = start.map_or(self.start, |s| towards(s, self.start));
-        let goal = goal.map_or(self.goal, |g| towards(g, start));
-        (start, goal)
-    }
-
-    /// Runs it at its gains from `start` to `goal` (its own where `None`;
-    /// signs as [`OrientationPrimitive::ends`] takes them).
-    pub fn rollout(&self, start: Option<Q>, goal: Option<Q>) -> OrientationRollout {
-        let (start, goal) = self.ends(start, goal);
-        let target = OrientationTarget {
-            start,
-            w0: self.w0,
-            goal,
-        };
-        rollout_forcing(&self.forcing, self.gains.0, self.gains.1, target)
-    }
 }
 
 /// `d_rot`: the angle between a path and a target, integrated over unit

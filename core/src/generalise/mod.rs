@@ -1,8 +1,10 @@
 //! Generalise: a fitted DMP run somewhere else (method.md section 10): a
-//! new start, goal and duration for one demo's DMP ([`primitive`]), and one
-//! skill from many demos ([`skill`]).
+//! new start, goal and duration for one demo's DMP ([`primitive`]) and its
+//! orientation ([`orientation`]), and one skill from many demos
+//! ([`skill`]).
 //!
-//! May use: landscape, fit, prepare.
+//! May use: landscape, kernels, fit, prepare.
 
+pub mod orientation;
 pub mod primitive;
 pub mod skill;

@@ -70,7 +70,7 @@ pub struct Primitive {
     pub(crate) extent: f64,
     /// The orientation DMP (method.md section 12), for a demo that has
     /// one; a skill has none.
-    pub orientation: Option<crate::fit::orientation::OrientationPrimitive>,
+    pub orientation: Option<crate::generalise::orientation::OrientationPrimitive>,
 }
 
 /// A primitive run at a target: unit-time and real-time kinematics.
@@ -151,7 +151,9 @@ impl Primitive {
             fdt2,
             members: Vec::new(),
             extent: 0.0,
-            orientation: crate::fit::orientation::OrientationPrimitive::of_demo(model, i, dm, km),
+            orientation: crate::generalise::orientation::OrientationPrimitive::of_demo(
+                model, i, dm, km,
+            ),
         }
         .with_extent())
     }

@@ -11,6 +11,7 @@
 pub mod dispatch;
 pub mod orientation;
 pub mod orientation_poly;
+pub mod orientation_run;
 pub mod position;
 pub mod similarity;
 pub mod skill;

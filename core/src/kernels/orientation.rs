@@ -3,7 +3,7 @@
 //! orientation rollout takes: the orientation's counterpart of the
 //! position kernel in `position_kernel.rs`. Every lane does the arithmetic of a lone
 //! pair, so a landscape point, [`crate::landscape::model::Model::evaluate`] and
-//! [`crate::fit::orientation::rollout_forcing`] agree to the bit.
+//! [`crate::kernels::orientation_run::rollout_forcing`] agree to the bit.
 //!
 //! The state is the rotation still to go, `r = q_g * conj(q)`, not `q`:
 //! `2 log(q_g * conj(q))` is then `2 log(r)`, the update
@@ -46,6 +46,7 @@ use crate::kernels::orientation_poly::{
     ANGLE, ANGLE_SHORT, COS, COS_SHORT, LOG, LOG_SHORT, SHORT_X, SINC, SINC_SHORT, horner,
     horner_split,
 };
+use crate::kernels::orientation_poly::{Lane, each};
 use crate::rotation;
 use crate::rotation::Q;
 
@@ -125,9 +126,6 @@ impl RotKernel {
 /// point, a path) takes one vector; a lane's numbers do not depend on it.
 const V_LANDSCAPE: usize = 4;
 
-/// A value per lane: `V` vectors of four.
-pub(crate) type Lane<const V: usize> = [f64x4; V];
-
 /// One axis of a step's forcing term per lane: `F0 + D F1` and `F2`, the
 /// step's term being `F0 + D F1 + K F2`.
 pub(crate) struct Forcing<const V: usize> {
@@ -156,12 +154,6 @@ impl Lanes<1> {
             steps: 0,
         }
     }
-}
-
-/// `f` of each vector of lanes.
-#[inline(always)]
-pub(crate) fn each<const V: usize>(f: impl Fn(usize) -> f64x4) -> Lane<V> {
-    std::array::from_fn(f)
 }
 
 impl<const V: usize> Lanes<V> {
@@ -475,7 +467,7 @@ fn integrate_chunk<const PEAK: bool, const V: usize, O: Observe<V>>(
     (d, a2_max.into_iter().map(f64::sqrt).collect())
 }
 
-/// What [`integrate_chunk`] (and [`crate::fit::orientation::rollout_forcing`])
+/// What [`integrate_chunk`] (and [`crate::kernels::orientation_run::rollout_forcing`])
 /// shows an observer around each step.
 pub(crate) trait Observe<const V: usize> {
     /// The state before step `k`.

@@ -1,4 +1,4 @@
-//! The polynomials of the orientation kernel (`orientation_kernel.rs`,
+//! The polynomials of the orientation kernel (`kernels/orientation.rs`,
 //! method.md section 12): the Chebyshev interpolants for `log` and `acos`,
 //! the Taylor series of `exp`, and their evaluation per lane, each
 //! coefficient a plain multiplication and addition (no fused
@@ -6,7 +6,14 @@
 
 use wide::f64x4;
 
-use crate::kernels::orientation::{Lane, each};
+/// A value per lane: `V` vectors of four.
+pub(crate) type Lane<const V: usize> = [f64x4; V];
+
+/// `f` of each vector of lanes.
+#[inline(always)]
+pub(crate) fn each<const V: usize>(f: impl Fn(usize) -> f64x4) -> Lane<V> {
+    std::array::from_fn(f)
+}
 
 /// `2 acos(1 - x) / sqrt(x)`, the error angle over `sqrt(x)`, on [0, 1]:
 /// Chebyshev interpolant of degree 9 in monomial form (relative error

@@ -265,7 +265,9 @@ impl Model {
             goal: prepared.goal,
         };
         let (dm, km) = self.orientation_gains(dm, km);
-        Some(crate::fit::orientation::rollout(proj, dm, km, target))
+        Some(crate::kernels::orientation_run::rollout(
+            proj, dm, km, target,
+        ))
     }
 
     /// `d_rot` (radians) and `alpha_peak` of demo `i` at the position gains

@@ -11,8 +11,22 @@ use crate::error::{Error, Location, Result};
 use crate::geom::{Quat, Vec3};
 use crate::load::decode::{ChannelSchema, MessageDecoder, decoder_for};
 use crate::load::demo::{RawDemo, TimeSource};
-use crate::load::mcap::{LoadOptions, Loaded, UpAxis};
+use crate::load::options::{LoadOptions, UpAxis};
 use crate::load::orientation_check::OrientationCounts;
+
+/// What one file gave.
+#[derive(Clone, Debug, Default)]
+pub struct Loaded {
+    /// Demos in topic-name order, then key order.
+    pub demos: Vec<RawDemo>,
+    /// Topics seen but not read, with their schema names.
+    pub skipped: Vec<(String, String)>,
+    /// Things the user should know that did not stop the load (a truncated
+    /// file's lost tail, a `--frame` that matches nothing).
+    pub warnings: Vec<String>,
+    /// Things worth knowing (messages that were compressed).
+    pub notes: Vec<String>,
+}
 
 /// The first bytes of a zstd frame.
 const ZSTD_MAGIC: [u8; 4] = [0x28, 0xB5, 0x2F, 0xFD];
@@ -149,21 +163,21 @@ impl<'o> Collector<'o> {
         };
         let regenerated = ch
             .metadata
-            .get(crate::export::recording::ROLE_KEY)
+            .get(crate::load::formats::ROLE_KEY)
             .map(String::as_str)
-            == Some(crate::export::recording::ROLE_REGENERATED);
+            == Some(crate::load::formats::ROLE_REGENERATED);
         let asked = |t: &str| {
             self.options
                 .streams
                 .topics
                 .iter()
-                .any(|p| crate::arrange::streams::matches_stream(p, t))
+                .any(|p| crate::load::options::matches_stream(p, t))
         };
         let exported_trajectory = ch
             .metadata
-            .get(crate::export::recording::ROLE_KEY)
+            .get(crate::load::formats::ROLE_KEY)
             .map(String::as_str)
-            == Some(crate::export::recording::ROLE_TRAJECTORY);
+            == Some(crate::load::formats::ROLE_TRAJECTORY);
         if exported_trajectory {
             self.skipped.push((
                 ch.topic.clone(),
@@ -207,16 +221,13 @@ impl<'o> Collector<'o> {
         let entry = decoder.map(|decoder| {
             self.streams.push(Channel {
                 topic: ch.topic.clone(),
-                name: ch
-                    .metadata
-                    .get(crate::export::recording::NAME_KEY)
-                    .map(|n| {
-                        if regenerated {
-                            format!("{n} (regenerated)")
-                        } else {
-                            n.clone()
-                        }
-                    }),
+                name: ch.metadata.get(crate::load::formats::NAME_KEY).map(|n| {
+                    if regenerated {
+                        format!("{n} (regenerated)")
+                    } else {
+                        n.clone()
+                    }
+                }),
                 decoder,
                 cdr: ch.message_encoding == "cdr",
                 compressed: 0,

@@ -10,10 +10,9 @@ use mcap::records::Record;
 use mcap::sans_io::linear_reader::{LinearReadEvent, LinearReader, LinearReaderOptions};
 
 use crate::error::{Error, Result};
-use crate::geom::Quat;
 use crate::load::chunks::{ChunkError, for_each_record, lengths_fit};
-use crate::load::collect::Collector;
-use crate::load::demo::RawDemo;
+use crate::load::collect::{Collector, Loaded};
+use crate::load::options::LoadOptions;
 
 /// The largest single record the loader accepts; a declared length beyond it
 /// is an error, never an allocation.
@@ -21,88 +20,6 @@ pub const RECORD_LENGTH_LIMIT: usize = 256 << 20;
 
 /// The most bytes read from the input at once.
 pub(crate) const READ_PIECE: usize = 1 << 20;
-
-/// Which way is up in the recording.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum UpAxis {
-    /// z up, x forward, y left (ROS REP 103, Foxglove): used as is.
-    #[default]
-    ZUp,
-    /// y up, x right, z backward (OpenVR native): turned to z-up as
-    /// `(x, y, z) -> (-z, -x, y)`.
-    YUp,
-}
-
-impl UpAxis {
-    /// The position in dmpscope's z-up frame.
-    pub fn to_z_up(self, p: [f64; 3]) -> [f64; 3] {
-        match self {
-            Self::ZUp => p,
-            Self::YUp => [-p[2], -p[0], p[1]],
-        }
-    }
-
-    /// An orientation in dmpscope's z-up frame (the same turn as
-    /// [`UpAxis::to_z_up`] applies to positions, then the body's own).
-    pub fn orientation_to_z_up(self, q: Quat) -> Quat {
-        match self {
-            Self::ZUp => q,
-            Self::YUp => crate::geom::y_up_to_z_up() * q,
-        }
-    }
-}
-
-/// How to read recordings (method.md sections 1 and 11): the CLI's loading
-/// flags and the app's Loading section are both this type.
-#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(default)]
-pub struct LoadOptions {
-    /// Keep only these keys (TF child frames, pose-array indices) of
-    /// multi-pose topics; empty keeps all.
-    pub frames: Vec<String>,
-    /// The recording's up axis.
-    pub up: UpAxis,
-    /// What a demonstration is (applied by [`crate::load::source::load_source`]; the MCAP
-    /// reader itself keeps one stream per topic and key).
-    pub demos: crate::arrange::group::Grouping,
-    /// What to do with a clock jump or a dropout inside a stream (applied
-    /// by [`crate::load::source::load_source`] before the grouping).
-    pub gaps: crate::arrange::gaps::GapPolicy,
-    /// Which streams are demonstrations: topic patterns and the least
-    /// movement (applied by [`crate::load::source::load_source`]).
-    pub streams: crate::arrange::streams::StreamFilter,
-    /// Express every TF frame in this frame, composing `/tf` and
-    /// `/tf_static` as a TF buffer does; `None` keeps each transform
-    /// relative to its own parent.
-    pub fixed_frame: Option<String>,
-    /// The length unit of the positions (applied by
-    /// [`crate::load::source::load_streams`]).
-    pub units: crate::load::units::Units,
-    /// Cut each demo's rests at its ends (applied by
-    /// [`crate::load::source::load_source`]; measured and reported either way).
-    pub trim_rest: bool,
-    /// What a rest is, for the end rests (the segmentation's settings).
-    pub rest: crate::arrange::segment::SegmentSettings,
-    /// An option beyond the method: a stream with an unusable orientation
-    /// (zero or not finite) keeps its positions without orientation, with
-    /// a warning, instead of the method's error (method.md section 12).
-    pub drop_bad_orientation: bool,
-}
-
-/// What one file gave.
-#[derive(Clone, Debug, Default)]
-pub struct Loaded {
-    /// Demos in topic-name order, then key order.
-    pub demos: Vec<RawDemo>,
-    /// Topics seen but not read, with their schema names.
-    pub skipped: Vec<(String, String)>,
-    /// Things the user should know that did not stop the load (a truncated
-    /// file's lost tail, a `--frame` that matches nothing).
-    pub warnings: Vec<String>,
-    /// Things worth knowing (messages that were compressed).
-    pub notes: Vec<String>,
-}
 
 /// Loads the demos of the MCAP file at `path` with default options.
 pub fn load_path(path: &std::path::Path) -> Result<Loaded> {

@@ -16,6 +16,7 @@ pub mod decode;
 pub mod demo;
 pub mod formats;
 pub mod mcap;
+pub mod options;
 pub mod orientation_check;
 pub mod rosbag1;
 pub mod rosbag2;

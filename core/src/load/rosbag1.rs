@@ -17,7 +17,9 @@ use std::io::Read;
 
 use crate::error::{Error, Location, Result};
 use crate::load::collect::Collector;
-use crate::load::mcap::{LoadOptions, Loaded, RECORD_LENGTH_LIMIT};
+use crate::load::collect::Loaded;
+use crate::load::mcap::RECORD_LENGTH_LIMIT;
+use crate::load::options::LoadOptions;
 
 /// The first bytes of a format 2.0 bag.
 pub const BAG_MAGIC: &[u8] = b"#ROSBAG V2.0\n";

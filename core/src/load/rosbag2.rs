@@ -10,10 +10,12 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
+use crate::load::collect::Loaded;
 use crate::load::demo::RawDemo;
 use crate::load::formats;
 use crate::load::formats::Reader;
-use crate::load::mcap::{LoadOptions, Loaded, READ_PIECE, load_reader};
+use crate::load::mcap::{READ_PIECE, load_reader};
+use crate::load::options::LoadOptions;
 
 /// The file name that marks a rosbag2 folder.
 pub const ROSBAG2_METADATA: &str = "metadata.yaml";

@@ -1,18 +1,19 @@
 //! One entry point for every recording a user can name: an MCAP file, a CSV
 //! file, a folder (a rosbag2 folder with `metadata.yaml`, or any folder of
 //! `.mcap` files), or the bytes of a file a browser handed over. The CLI and
-//! the app both load through [`load_source`], so the same file with the same
+//! the app both load through [`crate::arrange::streams::load_source`], so the same file with the same
 //! [`LoadOptions`] gives the same demonstrations in both.
 
 use std::path::Path;
 
-use crate::arrange::streams::{Arrangement, Overrides, arrange};
 use crate::error::{Error, Result};
+use crate::load::collect::Loaded;
 use crate::load::csv::load_csv;
 use crate::load::demo::RawDemo;
 use crate::load::formats;
 use crate::load::formats::Reader;
-use crate::load::mcap::{LoadOptions, Loaded, load_bytes_with};
+use crate::load::mcap::load_bytes_with;
+use crate::load::options::LoadOptions;
 use crate::load::rosbag1::load_bag_bytes;
 use crate::load::rosbag2;
 use crate::load::rosbag2::{Folder, ROSBAG2_METADATA};
@@ -36,12 +37,10 @@ pub enum SourceData<'a> {
 /// then topic and key), and what the user should be told.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SourceDemos {
-    /// The demonstrations (streams, before [`load_source`] groups them).
+    /// The demonstrations (streams, before [`crate::arrange::streams::load_source`] groups them).
     pub demos: Vec<RawDemo>,
     /// Topics skipped, a truncated file's lost tail, and the like.
     pub notices: Vec<Notice>,
-    /// Every stream and what became of it (filled by [`load_source`]).
-    pub streams: Vec<crate::arrange::streams::StreamInfo>,
     /// Topics the reader did not read, with why (their schema, or what
     /// they are).
     pub skipped: Vec<(String, String)>,
@@ -93,26 +92,6 @@ fn read_streams(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Resu
             read_file(path, name, options)
         }
     }
-}
-
-/// Loads a source and arranges its streams into demonstrations
-/// ([`crate::arrange`]: the topic patterns, breaks in time split or
-/// bridged, still and timeless streams skipped, the grouping; method.md
-/// sections 1 and 11). Nothing crosses sources, so loading sources one by
-/// one and pooling them gives the same demonstrations as loading them
-/// together (pooled names are made unique by
-/// [`crate::arrange::streams::unique_names`]).
-pub fn load_source(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Result<SourceDemos> {
-    let mut loaded = load_streams(name, data, options)?;
-    let arranged = arrange(
-        std::mem::take(&mut loaded.demos),
-        &Arrangement::of(options),
-        &Overrides::new(),
-    )?;
-    loaded.notices.extend(arranged.notices);
-    loaded.demos = arranged.demos;
-    loaded.streams = arranged.streams;
-    Ok(loaded)
 }
 
 fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
@@ -268,7 +247,6 @@ fn from_mcap(file: &str, loaded: Loaded) -> SourceDemos {
     SourceDemos {
         demos: loaded.demos,
         notices,
-        streams: Vec::new(),
         skipped: loaded.skipped,
     }
 }

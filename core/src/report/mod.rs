@@ -6,5 +6,6 @@
 
 pub mod presets;
 pub mod summary;
+pub mod table;
 pub mod table_text;
 pub mod text;

@@ -1,10 +1,7 @@
-//! The paper's reference gains (method.md section 7) and the Table I rows of
-//! any gain points ([`crate::report::summary::TableRow`]).
+//! The paper's reference gains (method.md section 7): its extracted gains
+//! and its four heuristics, by the names Table I gives them.
 
 use serde::Serialize;
-
-use crate::landscape::model::Model;
-use crate::report::summary::TableRow;
 
 /// A named gain pair.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -52,21 +49,4 @@ pub fn preset(name: &str) -> Option<Preset> {
         .iter()
         .find(|p| p.name.eq_ignore_ascii_case(name))
         .copied()
-}
-
-/// Table I for named gain points.
-pub fn table(model: &Model, points: &[(String, f64, f64)], k: f64) -> Vec<TableRow> {
-    points
-        .iter()
-        .map(|(name, dm, km)| TableRow::from_eval(name.clone(), &model.evaluate(*dm, *km), k))
-        .collect()
-}
-
-/// Table I rows of the five paper presets.
-pub fn preset_rows(model: &Model, k: f64) -> Vec<TableRow> {
-    let points: Vec<(String, f64, f64)> = PAPER_PRESETS
-        .iter()
-        .map(|p| (p.name.to_owned(), p.dm, p.km))
-        .collect();
-    table(model, &points, k)
 }

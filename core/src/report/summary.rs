@@ -53,117 +53,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::extract::diagnostics::{DiagAbout, Diagnostics};
 use crate::extract::optimum::Extraction;
-use crate::landscape::model::{Model, PointEval};
-use crate::report::presets::preset_rows;
-
-/// One row of Table I: a gain set and what it gives on every demo.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct TableRow {
-    /// What the gains are (a preset's name, `Extracted`, `Operating point`).
-    pub name: String,
-    /// D/M.
-    pub dm: f64,
-    /// K/M.
-    pub km: f64,
-    /// Damping ratio.
-    pub zeta: f64,
-    /// Human-likeness error per demo, metres over 1 s.
-    pub d_mean: Vec<f64>,
-    /// Peak acceleration per demo.
-    pub a_peak: Vec<f64>,
-    /// `sum d`.
-    pub d_sum: f64,
-    /// `S`.
-    pub s: f64,
-    /// `J` for the table's `k`.
-    pub j: f64,
-    /// Skill error per demo (method.md section 11), metres; NaN without
-    /// a skill error (`null` in JSON, read back as NaN).
-    #[serde(default, deserialize_with = "nans_for_nulls")]
-    pub e: Vec<f64>,
-    /// `E = sum e` (NaN without a skill error; absent in old reports).
-    #[serde(default = "nan", deserialize_with = "nan_for_null")]
-    pub e_sum: f64,
-    /// Orientation error per demo (method.md section 12), degrees; NaN for
-    /// a demo without orientation.
-    #[serde(default, deserialize_with = "nans_for_nulls")]
-    pub d_rot: Vec<f64>,
-    /// Peak angular acceleration per demo, rad/s^2 of unit time; NaN
-    /// without orientation.
-    #[serde(default, deserialize_with = "nans_for_nulls")]
-    pub alpha_peak: Vec<f64>,
-    /// `sum d_rot`, degrees (NaN when no demo has an orientation).
-    #[serde(default = "nan", deserialize_with = "nan_for_null")]
-    pub d_rot_sum: f64,
-}
-
-fn nan() -> f64 {
-    f64::NAN
-}
-
-/// A number that JSON holds as `null` when it was NaN.
-fn nan_for_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    Option::<f64>::deserialize(d).map(|v| v.unwrap_or(f64::NAN))
-}
-
-/// Numbers that JSON holds as `null` where they were NaN.
-fn nans_for_nulls<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
-    Vec::<Option<f64>>::deserialize(d)
-        .map(|v| v.into_iter().map(|x| x.unwrap_or(f64::NAN)).collect())
-}
-
-impl TableRow {
-    /// A row from an evaluation.
-    pub fn from_eval(name: impl Into<String>, eval: &PointEval, k: f64) -> Self {
-        Self {
-            name: name.into(),
-            dm: eval.dm,
-            km: eval.km,
-            zeta: eval.zeta,
-            d_mean: eval.d.clone(),
-            a_peak: eval.a_peak.clone(),
-            d_sum: eval.d_sum,
-            s: eval.s,
-            j: eval.j(k),
-            e: eval.e.clone(),
-            e_sum: eval.e_sum,
-            d_rot: eval.d_rot.iter().map(|r| r.to_degrees()).collect(),
-            alpha_peak: eval.alpha_peak.clone(),
-            d_rot_sum: eval.d_rot_sum,
-        }
-    }
-
-    /// Whether any demo of the row has an orientation.
-    pub fn oriented(&self) -> bool {
-        self.d_rot_sum.is_finite()
-    }
-
-    /// The row's cells as the CSV and Markdown tables print them: name,
-    /// D/M, K/M, zeta, S, sum d, J, E, then `d_mean` per demo in mm, then
-    /// `a_peak` per demo, then `e` per demo in mm; with `oriented`, then
-    /// sum d_rot, `d_rot` per demo in degrees and `alpha_peak` per demo.
-    pub fn cells(&self, oriented: bool) -> Vec<String> {
-        let mut c = vec![
-            self.name.clone(),
-            format!("{:.3}", self.dm),
-            format!("{:.3}", self.km),
-            format!("{:.3}", self.zeta),
-            format!("{:.5}", self.s),
-            format!("{:.5}", self.d_sum),
-            format!("{:.5}", self.j),
-            format!("{:.5}", self.e_sum),
-        ];
-        c.extend(self.d_mean.iter().map(|d| format!("{:.3}", d * 1e3)));
-        c.extend(self.a_peak.iter().map(|a| format!("{a:.2}")));
-        c.extend(self.e.iter().map(|e| format!("{:.3}", e * 1e3)));
-        if oriented {
-            c.push(format!("{:.4}", self.d_rot_sum));
-            c.extend(self.d_rot.iter().map(|d| format!("{d:.4}")));
-            c.extend(self.alpha_peak.iter().map(|a| format!("{a:.2}")));
-        }
-        c
-    }
-}
+use crate::landscape::model::Model;
+use crate::report::table::{TableRow, preset_rows};
 
 /// A demonstration as a report lists it.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -258,7 +149,7 @@ pub struct LoadingChoices {
     /// The positions' unit in the files (converted to metres).
     pub units: crate::load::units::Units,
     /// The recordings' up axis.
-    pub up: crate::load::mcap::UpAxis,
+    pub up: crate::load::options::UpAxis,
     /// What a demonstration is: `topic`, `file` or `segment`.
     pub demos: String,
     /// With segments: which were kept (`all`, `first`, `last`, `N`).
@@ -275,8 +166,8 @@ pub struct LoadingChoices {
 
 impl LoadingChoices {
     /// The choices of loading options and preparation settings.
-    pub fn of(load: &crate::load::mcap::LoadOptions, prep: &crate::PrepSettings) -> Self {
-        use crate::arrange::group::Grouping;
+    pub fn of(load: &crate::load::options::LoadOptions, prep: &crate::PrepSettings) -> Self {
+        use crate::load::options::Grouping;
         let (demos, segments) = match load.demos {
             Grouping::PerTopic => ("topic", "all".to_owned()),
             Grouping::PerFile => ("file", "all".to_owned()),

@@ -17,6 +17,7 @@ pub mod point_mass;
 pub mod policy;
 pub mod ppo;
 pub mod run;
+pub mod table;
 pub mod task;
 
 pub use env::{ActionMode, DmpEnv, EnvOptions, ExploreScale, GreedyRun};
@@ -24,8 +25,5 @@ pub use outcome::diverged;
 pub use point_mass::PointMass;
 pub use policy::Policy;
 pub use ppo::{DEFAULT_DECISIONS, IterStats, PpoConfig, Trainer};
-pub use run::{FirstReach, RunReport, SetSummary, TrainingRun, summarise};
+pub use run::{FirstReach, REACHED_M, RunReport, SetSummary, TrainingRun, summarise};
 pub use task::{Step, Task};
-
-/// Within this distance of the goal an episode "reached" it (issue 6).
-pub const REACHED_M: f64 = 0.005;

@@ -6,11 +6,13 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::rl::REACHED_M;
 use crate::rl::env::{DmpEnv, EnvOptions, GreedyRun};
 use crate::rl::outcome::diverged;
 use crate::rl::ppo::{IterStats, PpoConfig, Trainer};
 use crate::{Error, Model, Result};
+
+/// Within this distance of the goal an episode "reached" it (issue 6).
+pub const REACHED_M: f64 = 0.005;
 
 /// When a run's mean first ended within [`REACHED_M`] of the goal.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

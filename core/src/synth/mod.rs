@@ -1,10 +1,11 @@
 //! Synth: demonstrations made here, for the bundled samples, the tests and
 //! the bootstrap: tracked reaches as a VIVE records them ([`vive`]) and
 //! demos that share one forcing term at planted gains ([`planted`],
-//! [`planted_orientation`]).
+//! [`planted_forcing`], [`planted_orientation`]).
 //!
 //! May use: fit, prepare, load.
 
 pub mod planted;
+pub mod planted_forcing;
 pub mod planted_orientation;
 pub mod vive;

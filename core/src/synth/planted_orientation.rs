@@ -9,7 +9,7 @@
 use crate::rng::Rng;
 use crate::rotation;
 use crate::rotation::Q;
-use crate::synth::planted::{Forcing, GRID, PlantedSpec, SUBSTEPS, forcing_towards, turn};
+use crate::synth::planted_forcing::{Forcing, GRID, PlantedSpec, SUBSTEPS, forcing_towards, turn};
 
 /// The nominal turn as a rotation vector (radians times the axis).
 const NOMINAL_TURN: [f64; 3] = [0.25, 0.45, 0.75];

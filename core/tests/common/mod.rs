@@ -11,8 +11,9 @@ use std::io::Cursor;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use dmpscope_core::export::write::{TopicSamples, write_pose_stamped};
+use dmpscope_core::load::collect::Loaded;
 use dmpscope_core::load::decode::ros2::POSE_STAMPED_SCHEMA;
-use dmpscope_core::load::mcap::{Loaded, load_bytes};
+use dmpscope_core::load::mcap::load_bytes;
 use dmpscope_core::{Error, RawDemo, Result, TimeSource};
 use mcap::records::MessageHeader;
 
@@ -229,10 +230,10 @@ pub fn planted8_demos() -> Vec<RawDemo> {
 /// The demos of the bundled recording `name` (its bytes), loaded with the
 /// default options.
 fn bundled(name: &str, bytes: &[u8]) -> Vec<RawDemo> {
-    dmpscope_core::load::source::load_source(
+    dmpscope_core::arrange::streams::load_source(
         name,
         dmpscope_core::load::source::SourceData::Bytes(bytes),
-        &dmpscope_core::load::mcap::LoadOptions::default(),
+        &dmpscope_core::load::options::LoadOptions::default(),
     )
     .unwrap_or_else(|e| panic!("the bundled {name} loads: {e}"))
     .demos
@@ -240,7 +241,7 @@ fn bundled(name: &str, bytes: &[u8]) -> Vec<RawDemo> {
 
 /// Planted demos (`dmpscope_core::planted`) as raw demos named
 /// `planted:i` on topics `/demo_ii`, orientations included.
-pub fn planted_raw(spec: &dmpscope_core::synth::planted::PlantedSpec) -> Vec<RawDemo> {
+pub fn planted_raw(spec: &dmpscope_core::synth::planted_forcing::PlantedSpec) -> Vec<RawDemo> {
     dmpscope_core::synth::planted::planted_demos(spec, EPOCH)
         .iter()
         .enumerate()

@@ -5,10 +5,10 @@
 //! filter or the fixed frame reads the recordings again; the rest only
 //! rearranges what was read.
 
-use dmpscope_core::arrange::gaps::GapPolicy;
-use dmpscope_core::arrange::group::Grouping;
-use dmpscope_core::arrange::segment::{SegmentPick, SegmentSettings};
-use dmpscope_core::load::mcap::UpAxis;
+use dmpscope_core::load::options::GapPolicy;
+use dmpscope_core::load::options::Grouping;
+use dmpscope_core::load::options::UpAxis;
+use dmpscope_core::load::options::{SegmentPick, SegmentSettings};
 use dmpscope_core::load::units::Units;
 use eframe::egui;
 
@@ -110,7 +110,7 @@ fn loading_segment_pick_ui(ui: &mut egui::Ui, keep: &mut SegmentPick) {
 
 /// The rests-at-the-ends row: trim them or keep them (reported either way;
 /// a rest is the segmentation's, below its rest speed for its rest time).
-fn loading_rests_ui(ui: &mut egui::Ui, load: &mut dmpscope_core::load::mcap::LoadOptions) {
+fn loading_rests_ui(ui: &mut egui::Ui, load: &mut dmpscope_core::load::options::LoadOptions) {
     ui.label("rests at the ends");
     ui.checkbox(&mut load.trim_rest, "trim").on_hover_text(
         "cut each demo's standing still before and after the motion (changes what unit \

@@ -7,11 +7,11 @@
 //! again); the demos, the model and the landscape follow.
 
 use dmpscope_core::Level;
-use dmpscope_core::arrange::segment::SegmentSettings;
 use dmpscope_core::arrange::streams::{StreamInfo, StreamStatus};
+use dmpscope_core::load::options::SegmentSettings;
 use eframe::egui;
 
-use dmpscope_core::arrange::group::Grouping;
+use dmpscope_core::load::options::Grouping;
 
 use super::super::timeline::{TimelineCache, timeline_ui};
 use super::PanelCtx;

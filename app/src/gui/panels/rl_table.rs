@@ -1,10 +1,9 @@
-//! The RL panel's table of finished runs (the CLI's `rl --compare` table):
-//! per run the gains, seed, whether and how closely the policy's mean
-//! reaches the goal, d against the demo, a_peak, when it first reached,
-//! how steadily it stayed reached and whether training stayed stable; then
-//! one line per gain set.
+//! The RL panel's table of finished runs: the CLI's `rl --compare` table,
+//! its columns from [`dmpscope_core::rl::table`]; then one line per gain
+//! set.
 
 use dmpscope_core::rl::run::{RunReport, summarise};
+use dmpscope_core::rl::table::RUN_COLUMNS;
 use eframe::egui::{self, Color32};
 
 /// The table of `runs`.
@@ -14,50 +13,25 @@ pub fn runs_table(ui: &mut egui::Ui, runs: &[RunReport]) {
         .show(ui, |ui| {
             egui::Grid::new("rl runs table")
                 .striped(true)
-                .num_columns(10)
+                .num_columns(RUN_COLUMNS.len())
                 .show(ui, |ui| {
-                    for h in [
-                        "gains",
-                        "seed",
-                        "reached",
-                        "error mm",
-                        "d mm",
-                        "a_peak",
-                        "1st reach",
-                        "at s",
-                        "held",
-                        "stable",
-                    ] {
-                        ui.strong(h);
+                    for c in &RUN_COLUMNS {
+                        ui.strong(c.title);
                     }
                     ui.end_row();
                     for r in runs {
-                        ui.label(&r.name);
-                        ui.label(r.seed.to_string());
-                        let (text, colour) = if r.reached {
-                            ("yes", Color32::from_rgb(120, 210, 120))
-                        } else {
-                            ("no", Color32::from_rgb(240, 160, 90))
-                        };
-                        ui.colored_label(colour, text);
-                        ui.label(format!("{:.2}", r.greedy.final_error * 1e3));
-                        ui.label(format!("{:.1}", r.d * 1e3));
-                        ui.label(format!("{:.1}", r.greedy.a_peak()));
-                        match r.first_reach {
-                            Some(f) => {
-                                ui.label(f.decisions.to_string());
-                                ui.label(format!("{:.1}", f.seconds));
-                            }
-                            None => {
-                                ui.label("-");
-                                ui.label("-");
-                            }
+                        for c in &RUN_COLUMNS {
+                            let cell = (c.cell)(r);
+                            match (c.title, cell.as_str()) {
+                                ("reached", "yes") => {
+                                    ui.colored_label(Color32::from_rgb(120, 210, 120), cell)
+                                }
+                                ("reached", _) => {
+                                    ui.colored_label(Color32::from_rgb(240, 160, 90), cell)
+                                }
+                                _ => ui.label(cell),
+                            };
                         }
-                        ui.label(
-                            r.held
-                                .map_or("-".to_owned(), |h| format!("{:.0}%", 100.0 * h)),
-                        );
-                        ui.label(if r.diverged { "no" } else { "yes" });
                         ui.end_row();
                     }
                 });

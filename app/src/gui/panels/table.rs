@@ -5,7 +5,7 @@
 //! largest alpha_peak and each demo's d_rot in degrees (section 12); copied
 //! as Markdown or CSV (the core's report renders both).
 
-use dmpscope_core::TableRow;
+use dmpscope_core::report::table::{PER_DEMO, PerDemo, SUMMARY, TableRow, parts};
 use eframe::egui;
 
 use super::PanelCtx;
@@ -42,37 +42,7 @@ pub fn table_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         let id = ui.scope_id().with(("table-i-columns", oriented, &names));
         let mut columns = Columns::load(ui, id);
         egui::Grid::new("table-i").striped(true).show(ui, |ui| {
-            for h in [
-                "gains",
-                "D/M",
-                "K/M",
-                "zeta",
-                "S",
-                "sum d [m]",
-                "J",
-                "E [m]",
-                "mean d_mean [mm]",
-                "max a_peak",
-            ] {
-                columns.cell(ui, || egui::RichText::new(h).strong());
-            }
-            if oriented {
-                for h in ["sum d_rot [deg]", "max alpha_peak"] {
-                    columns.cell(ui, || egui::RichText::new(h).strong());
-                }
-            }
-            let mut prefixes = vec![("d", "mm"), ("e", "mm")];
-            if oriented {
-                prefixes.push(("d_rot", "deg"));
-            }
-            for (prefix, unit) in prefixes {
-                for (i, name) in names.iter().enumerate() {
-                    columns.cell(ui, || {
-                        let title = format!("{prefix} {} [{unit}]", short(name, i));
-                        egui::RichText::new(title).strong()
-                    });
-                }
-            }
+            header(ui, &mut columns, &names, oriented);
             columns.end_row(ui);
             for r in &rows {
                 row(ui, &mut columns, r, oriented);
@@ -149,34 +119,68 @@ impl Columns {
     }
 }
 
-fn row(ui: &mut egui::Ui, columns: &mut Columns, r: &TableRow, oriented: bool) {
-    let c = r.cells(false);
-    for cell in &c[..8] {
-        columns.cell(ui, || cell.as_str());
+/// The header: the name, the summary columns with the app's two extra
+/// (the mean d_mean, the largest a_peak; with orientation the largest
+/// alpha_peak), then a column per demo of each group the app shows.
+fn header(ui: &mut egui::Ui, columns: &mut Columns, names: &[&str], oriented: bool) {
+    let strong = |t: &str| egui::RichText::new(t).strong();
+    columns.cell(ui, || strong("gains"));
+    for &part in parts(oriented) {
+        for c in SUMMARY.iter().filter(|c| c.orientation == part) {
+            columns.cell(ui, || strong(c.title));
+        }
+        let extra: &[&str] = if part {
+            &["max alpha_peak"]
+        } else {
+            &["mean d_mean [mm]", "max a_peak"]
+        };
+        for &h in extra {
+            columns.cell(ui, || strong(h));
+        }
     }
-    columns.cell(ui, || {
-        let mean = r.d_mean.iter().sum::<f64>() / r.d_mean.len().max(1) as f64;
-        format!("{:.3}", mean * 1e3)
-    });
-    columns.cell(ui, || {
-        format!("{:.2}", r.a_peak.iter().fold(0.0f64, |a, &b| a.max(b)))
-    });
+    for g in in_app(oriented) {
+        for (i, name) in names.iter().enumerate() {
+            columns.cell(ui, || {
+                strong(&format!("{} {} [{}]", g.short, short(name, i), g.unit))
+            });
+        }
+    }
+}
+
+/// The per-demo groups the app shows a column per demo of.
+fn in_app(oriented: bool) -> impl Iterator<Item = &'static PerDemo> {
+    PER_DEMO
+        .iter()
+        .filter(move |g| g.in_app && (oriented || !g.orientation))
+}
+
+fn row(ui: &mut egui::Ui, columns: &mut Columns, r: &TableRow, oriented: bool) {
+    columns.cell(ui, || r.name.as_str());
     let largest = |v: &[f64]| {
         v.iter()
             .copied()
             .filter(|x| !x.is_nan())
             .fold(0.0f64, f64::max)
     };
-    if oriented {
-        columns.cell(ui, || format!("{:.4}", r.d_rot_sum));
-        columns.cell(ui, || format!("{:.2}", largest(&r.alpha_peak)));
+    for &part in parts(oriented) {
+        for c in SUMMARY.iter().filter(|c| c.orientation == part) {
+            columns.cell(ui, || c.cell(r));
+        }
+        if part {
+            columns.cell(ui, || format!("{:.2}", largest(&r.alpha_peak)));
+        } else {
+            columns.cell(ui, || {
+                let mean = r.d_mean.iter().sum::<f64>() / r.d_mean.len().max(1) as f64;
+                format!("{:.3}", mean * 1e3)
+            });
+            columns.cell(ui, || {
+                format!("{:.2}", r.a_peak.iter().fold(0.0f64, |a, &b| a.max(b)))
+            });
+        }
     }
-    for d in r.d_mean.iter().chain(&r.e) {
-        columns.cell(ui, || format!("{:.3}", d * 1e3));
-    }
-    if oriented {
-        for d in &r.d_rot {
-            columns.cell(ui, || format!("{d:.4}"));
+    for g in in_app(oriented) {
+        for &v in (g.values)(r) {
+            columns.cell(ui, || g.cell(v));
         }
     }
 }

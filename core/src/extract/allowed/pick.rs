@@ -3,46 +3,40 @@
 //! constrained one), or the grid point a rule prefers; a rule with no
 //! point says why and names the nearest.
 
-use crate::extract::allowed::{Acceptable, COMPLIANT_ZETA, Pick, PickRule, num, percent};
+use crate::extract::allowed::numbers::{num, percent};
+use crate::extract::allowed::region::Acceptable;
+use crate::extract::allowed::rule::{COMPLIANT_ZETA, Pick, PickRule};
 use crate::extract::optimum::Extraction;
 use crate::extract::robot::RobotGains;
 use crate::landscape::grid::Landscape;
 use crate::landscape::model::{Model, zeta};
 
-impl Pick {
-    /// The pick with its reason in words.
-    pub(super) fn with_why(mut self, why: String) -> Self {
-        self.why = why;
-        self
-    }
-}
-
 /// What a pick looks at.
-pub(super) struct Context<'a> {
+pub(crate) struct Context<'a> {
     /// The model the points are evaluated with.
-    pub(super) model: &'a Model,
+    pub(crate) model: &'a Model,
     /// The complete landscape.
-    pub(super) landscape: &'a Landscape,
+    pub(crate) landscape: &'a Landscape,
     /// J's refined optimum and its k.
-    pub(super) extraction: &'a Extraction,
+    pub(crate) extraction: &'a Extraction,
     /// The acceptable region.
-    pub(super) acceptable: &'a Acceptable,
+    pub(crate) acceptable: &'a Acceptable,
     /// An a_peak limit every pick keeps to.
-    pub(super) limit: Option<f64>,
+    pub(crate) limit: Option<f64>,
     /// The demos' mean duration, seconds (the robot's gains).
-    pub(super) duration: f64,
+    pub(crate) duration: f64,
 }
 
 impl Context<'_> {
     /// `, among the gains with a_peak within L` when a limit is set.
-    pub(super) fn limited(&self) -> String {
+    pub(crate) fn limited(&self) -> String {
         self.limit.map_or(String::new(), |l| {
             format!(", among the gains whose a_peak stays within {l} m/s^2")
         })
     }
 
     /// The gains `rule` picks, evaluated, or why there are none.
-    pub(super) fn pick(&self, rule: PickRule) -> Result<Pick, String> {
+    pub(crate) fn pick(&self, rule: PickRule) -> Result<Pick, String> {
         let (dm, km) = match rule {
             PickRule::Optimum => self.optimum()?,
             _ => self.grid_pick(rule)?,

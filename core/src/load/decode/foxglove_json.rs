@@ -3,14 +3,14 @@
 //! Foxglove writes them (times as `{"sec": .., "nsec": ..}`), a missing or
 //! `null` field counts as its zero value as in protobuf, and a field of the
 //! wrong JSON type is an error naming its path. The writing side (JSON
-//! Schemas and message encoders) is at the end, re-exported by
-//! [`crate::load::decode::foxglove_schemas`].
+//! Schemas and message encoders) is [`crate::export::foxglove_json`].
 
 use std::borrow::Cow;
 
-use serde_json::{Map, Value, json};
+use serde_json::{Map, Value};
 
-use crate::load::decode::foxglove_schemas::{FoxgloveSchema, Transform, split_stamp, stamp_ns};
+use crate::load::decode::foxglove_schemas::FoxgloveSchema;
+use crate::load::decode::foxglove_schemas::stamp_ns;
 use crate::load::decode::{ChannelSchema, MessageDecoder, PoseSample};
 
 /// A JSON object.
@@ -210,155 +210,4 @@ fn integer(time: &Object, name: &str, path: &str) -> Result<i64, String> {
         Some(v) if v.fract() == 0.0 && v.abs() < 9_223_372_036_854_775_808.0 => Ok(v as i64),
         _ => Err(bad()),
     }
-}
-
-// ------------------------------------------------------ the writing side
-
-/// The JSON Schema of a Foxglove schema (the schema data of a JSON channel).
-pub fn json_schema(schema: FoxgloveSchema) -> String {
-    let number = || json!({ "type": "number" });
-    let time = |what: &str| {
-        json!({
-            "type": "object",
-            "title": "time",
-            "description": what,
-            "properties": {
-                "sec": { "type": "integer", "minimum": 0 },
-                "nsec": { "type": "integer", "minimum": 0, "maximum": 999_999_999 }
-            }
-        })
-    };
-    let vector3 = || {
-        json!({
-            "type": "object",
-            "title": "foxglove.Vector3",
-            "properties": { "x": number(), "y": number(), "z": number() }
-        })
-    };
-    let quaternion = || {
-        json!({
-            "type": "object",
-            "title": "foxglove.Quaternion",
-            "properties": { "x": number(), "y": number(), "z": number(), "w": number() }
-        })
-    };
-    let pose = || {
-        json!({
-            "type": "object",
-            "title": "foxglove.Pose",
-            "properties": { "position": vector3(), "orientation": quaternion() }
-        })
-    };
-    let string = || json!({ "type": "string" });
-    let transform = || {
-        json!({
-            "type": "object",
-            "title": "foxglove.FrameTransform",
-            "description": "A transform between two reference frames in 3D space",
-            "properties": {
-                "timestamp": time("Timestamp of transform"),
-                "parent_frame_id": string(),
-                "child_frame_id": string(),
-                "translation": vector3(),
-                "rotation": quaternion()
-            }
-        })
-    };
-    let value = match schema {
-        FoxgloveSchema::PoseInFrame => json!({
-            "type": "object",
-            "title": "foxglove.PoseInFrame",
-            "description": "A timestamped pose for an object or reference frame in 3D space",
-            "properties": {
-                "timestamp": time("Timestamp of pose"),
-                "frame_id": string(),
-                "pose": pose()
-            }
-        }),
-        FoxgloveSchema::PosesInFrame => json!({
-            "type": "object",
-            "title": "foxglove.PosesInFrame",
-            "description": "An array of timestamped poses for an object or reference frame in 3D space",
-            "properties": {
-                "timestamp": time("Timestamp of pose"),
-                "frame_id": string(),
-                "poses": { "type": "array", "items": pose() }
-            }
-        }),
-        FoxgloveSchema::FrameTransform => transform(),
-        FoxgloveSchema::FrameTransforms => json!({
-            "type": "object",
-            "title": "foxglove.FrameTransforms",
-            "description": "An array of FrameTransform messages",
-            "properties": {
-                "transforms": { "type": "array", "items": transform() }
-            }
-        }),
-    };
-    value.to_string()
-}
-
-fn time_json(stamp_ns: i64) -> Value {
-    let (sec, nsec) = split_stamp(stamp_ns);
-    json!({ "sec": sec, "nsec": nsec })
-}
-
-fn vector3_json(p: [f64; 3]) -> Value {
-    json!({ "x": p[0], "y": p[1], "z": p[2] })
-}
-
-fn pose_json(p: [f64; 3]) -> Value {
-    json!({
-        "position": vector3_json(p),
-        "orientation": { "x": 0.0, "y": 0.0, "z": 0.0, "w": 1.0 }
-    })
-}
-
-fn transform_json(t: &Transform<'_>) -> Value {
-    json!({
-        "timestamp": time_json(t.stamp_ns),
-        "parent_frame_id": t.parent_frame_id,
-        "child_frame_id": t.child_frame_id,
-        "translation": vector3_json(t.translation),
-        "rotation": { "x": 0.0, "y": 0.0, "z": 0.0, "w": 1.0 }
-    })
-}
-
-/// Encodes `foxglove.PoseInFrame` as JSON (identity orientation). JSON has
-/// no NaN or infinity: a non-finite coordinate is written as `null`.
-pub fn encode_pose_in_frame_json(stamp_ns: i64, frame_id: &str, position: [f64; 3]) -> Vec<u8> {
-    json!({
-        "timestamp": time_json(stamp_ns),
-        "frame_id": frame_id,
-        "pose": pose_json(position)
-    })
-    .to_string()
-    .into_bytes()
-}
-
-/// Encodes `foxglove.PosesInFrame` as JSON, one pose per position.
-pub fn encode_poses_in_frame_json(
-    stamp_ns: i64,
-    frame_id: &str,
-    positions: &[[f64; 3]],
-) -> Vec<u8> {
-    let poses: Vec<_> = positions.iter().map(|&p| pose_json(p)).collect();
-    json!({
-        "timestamp": time_json(stamp_ns),
-        "frame_id": frame_id,
-        "poses": poses
-    })
-    .to_string()
-    .into_bytes()
-}
-
-/// Encodes `foxglove.FrameTransform` as JSON.
-pub fn encode_frame_transform_json(transform: &Transform<'_>) -> Vec<u8> {
-    transform_json(transform).to_string().into_bytes()
-}
-
-/// Encodes `foxglove.FrameTransforms` as JSON.
-pub fn encode_frame_transforms_json(transforms: &[Transform<'_>]) -> Vec<u8> {
-    let list: Vec<_> = transforms.iter().map(transform_json).collect();
-    json!({ "transforms": list }).to_string().into_bytes()
 }

@@ -10,7 +10,8 @@ use prost_reflect::{
     DescriptorPool, DynamicMessage, FieldDescriptor, Kind, MessageDescriptor, Value,
 };
 
-use crate::load::decode::foxglove_schemas::{FoxgloveSchema, stamp_ns};
+use crate::load::decode::foxglove_schemas::FoxgloveSchema;
+use crate::load::decode::foxglove_schemas::stamp_ns;
 use crate::load::decode::{ChannelSchema, MessageDecoder, PoseSample};
 
 /// The decoder of a protobuf channel: `None` unless its schema is one of

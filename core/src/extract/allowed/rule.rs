@@ -1,0 +1,119 @@
+//! The rules that pick gains in the acceptable region (method.md section
+//! 11), how to pick, and a picked gain pair with what a robot needs of it.
+
+use serde::{Deserialize, Serialize};
+
+use crate::extract::robot::RobotGains;
+
+/// The default eps of the acceptable region (the flatness threshold).
+pub const DEFAULT_EPS: f64 = 0.02;
+
+/// The damping ratios a `compliant` pick accepts.
+pub const COMPLIANT_ZETA: [f64; 2] = [0.7, 1.5];
+
+/// A rule that picks gains in the acceptable region.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PickRule {
+    /// J's refined optimum (the paper).
+    Optimum,
+    /// The least K/M with zeta in [0.7, 1.5].
+    Compliant,
+    /// zeta nearest 1, then the least K/M.
+    Critical,
+    /// The least max-over-demos a_peak.
+    Smooth,
+}
+
+impl PickRule {
+    /// Every rule, in the order menus list them.
+    pub const ALL: [Self; 4] = [Self::Optimum, Self::Compliant, Self::Critical, Self::Smooth];
+
+    /// Its name on the command line and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Optimum => "optimum",
+            Self::Compliant => "compliant",
+            Self::Critical => "critical",
+            Self::Smooth => "smooth",
+        }
+    }
+
+    /// What it chooses, in words.
+    pub fn rule_text(self) -> &'static str {
+        match self {
+            Self::Optimum => "J's refined optimum",
+            Self::Compliant => "the least K/M with zeta in [0.7, 1.5] (soft and well damped)",
+            Self::Critical => "zeta nearest 1 (critically damped), then the least K/M",
+            Self::Smooth => "the least peak acceleration of any demo",
+        }
+    }
+}
+
+impl std::str::FromStr for PickRule {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|r| r.name() == s)
+            .ok_or_else(|| format!("unknown pick {s:?}: optimum, compliant, critical or smooth"))
+    }
+}
+
+/// A picked gain pair and everything a robot needs to know of it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Pick {
+    /// The rule that chose it.
+    pub rule: PickRule,
+    /// D/M.
+    pub dm: f64,
+    /// K/M.
+    pub km: f64,
+    /// Damping ratio.
+    pub zeta: f64,
+    /// J there.
+    pub j: f64,
+    /// S there.
+    pub s: f64,
+    /// sum d there, metres.
+    pub d_sum: f64,
+    /// E there, metres (`None` without a skill error).
+    pub e_sum: Option<f64>,
+    /// The largest a_peak of any demo there, m/s^2 of unit time.
+    pub a_peak_max: f64,
+    /// Why this rule and this point, in words.
+    pub why: String,
+    /// The gains in real time at the demos' mean duration.
+    pub robot: RobotGains,
+}
+
+/// How to pick.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PickSettings {
+    /// The rule; `None`: `optimum` when J is not flat, `compliant` when it
+    /// is.
+    pub rule: Option<PickRule>,
+    /// The region's eps.
+    pub eps: f64,
+    /// An a_peak limit (m/s^2 of unit time) every pick keeps to.
+    pub a_peak_limit: Option<f64>,
+}
+
+impl Default for PickSettings {
+    fn default() -> Self {
+        Self {
+            rule: None,
+            eps: DEFAULT_EPS,
+            a_peak_limit: None,
+        }
+    }
+}
+
+impl Pick {
+    /// The pick with its reason in words.
+    pub(crate) fn with_why(mut self, why: String) -> Self {
+        self.why = why;
+        self
+    }
+}
