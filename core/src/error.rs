@@ -1,5 +1,7 @@
 //! Errors of the core: every one names what the user gave (file, topic,
 //! sample index) so it can be shown as is.
+//!
+//! May use: nothing.
 
 use std::fmt;
 

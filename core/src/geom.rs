@@ -2,6 +2,8 @@
 //! position or velocity ([`Vec3`]) and an orientation ([`Quat`]), both
 //! nalgebra's (measured: a 1001-step rollout on `Vector3<f64>` costs the
 //! same as on `[f64; 3]`, ~10 us, with the same bits).
+//!
+//! May use: nothing.
 
 /// A position, velocity or acceleration in metres (per second, per second
 /// squared), z up.

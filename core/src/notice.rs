@@ -2,6 +2,8 @@
 //! out, a truncated file's lost tail. Both front ends show the same notices:
 //! the CLI on stderr (`note:`, `warning:`, `error:`), the app in its message
 //! list.
+//!
+//! May use: nothing.
 
 use std::fmt;
 

@@ -1,6 +1,8 @@
 //! From raw demonstrations to a fitted [`Model`], with an explicit policy for
 //! the demos that cannot be used (method.md section 13): the CLI and the app
 //! both build their model here.
+//!
+//! May use: landscape, fit, prepare, load.
 
 use serde::{Deserialize, Serialize};
 

@@ -14,6 +14,8 @@
 //! different last bit prepared gave Table I's `d_rot` 5e-10 apart in the
 //! browser (`web/tests/browser.mjs` compares them). And an RL run is
 //! chaotic ([`crate::rl`]).
+//!
+//! May use: nothing.
 
 /// `e^x`.
 #[inline]

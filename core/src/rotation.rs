@@ -3,6 +3,8 @@
 //! conjugate, `log` and `exp` as the method writes them, slerp and the
 //! angle between two orientations. Written out (not nalgebra's) so that
 //! every formula is the method's and the kernels stay on arrays.
+//!
+//! May use: portable.
 
 /// A quaternion `[x, y, z, w]`.
 pub type Q = [f64; 4];

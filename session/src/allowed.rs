@@ -3,30 +3,14 @@
 //! from the complete landscape and the extraction whenever either, the
 //! pick rule, the region's eps or the a_peak limit changes.
 
+use dmpscope_core::Level;
 use dmpscope_core::extract::allowed::{Allowed, PickSettings};
-use dmpscope_core::{Level, PointEval};
 
 use crate::jobs::Once;
+use crate::session::Session;
+use crate::settings::Settings;
 use crate::stage::Polled;
-use crate::stages::ExtractionKey;
-use crate::{Session, Settings};
-
-/// What the verdict and the pick are computed for (`f64`s by their bits).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct AllowedKey {
-    pub(crate) extraction: ExtractionKey,
-    pub(crate) rule: Option<dmpscope_core::extract::allowed::PickRule>,
-    pub(crate) eps: u64,
-    pub(crate) limit: Option<u64>,
-}
-
-/// The verdict with the pick's evaluation (its row of Table I).
-pub struct AllowedView {
-    /// The region, E's verdict and the pick.
-    pub allowed: Allowed,
-    /// Every demo's numbers at the pick.
-    pub pick_eval: Option<PointEval>,
-}
+use crate::state::{AllowedKey, AllowedView};
 
 impl Session {
     /// Brings the verdict up to date (after the extraction's stage).

@@ -3,7 +3,7 @@
 
 use dmpscope_core::Notice;
 
-use super::rl::RlRequest;
+use super::rl_request::RlRequest;
 use super::sources::Source;
 
 /// A request to the session, applied by [`super::Session::apply`].

@@ -16,8 +16,8 @@ use dmpscope_core::landscape::grid::{Grid, Landscape};
 use dmpscope_core::{Model, Result};
 
 use crate::jobs::Clock;
-use crate::rl::{Progress, RlRequest};
-use crate::rl_board::{RunBoard, RunUpdate};
+use crate::rl_board::RunBoard;
+use crate::rl_request::{Progress, RlRequest, RunUpdate};
 use crate::tiles::{Answer, TiledFill};
 use crate::workers::{Exchanged, Generation, Handout, Setup, Workers};
 

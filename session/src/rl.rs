@@ -9,72 +9,13 @@
 
 use std::sync::Arc;
 
-use dmpscope_core::rl::env::{EnvOptions, GreedyRun};
-use dmpscope_core::rl::run::{FirstReach, RunReport, TrainingRun};
+use dmpscope_core::rl::run::TrainingRun;
 use dmpscope_core::{Error, Model, Result};
 use std::time::Duration;
 
-use serde::{Deserialize, Serialize};
-
 use crate::jobs::{Clock, Runner, Step, Work};
 use crate::pooled::PoolRl;
-use crate::rl_board::{RunUpdate, run_label};
-
-/// One run of a request: the gains and the seed.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct RlRun {
-    /// What the gains are ("extracted", a preset's name, ...).
-    pub gains_name: String,
-    /// D/M.
-    pub dm: f64,
-    /// K/M.
-    pub km: f64,
-    /// The seed.
-    pub seed: u64,
-}
-
-/// What to train: a demo of the model, the environment, the budget per
-/// run and the runs, in order.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct RlRequest {
-    /// The demo (model index).
-    pub demo: usize,
-    /// Decisions per episode and the action mode.
-    pub options: EnvOptions,
-    /// Decisions to train per run.
-    pub steps: usize,
-    /// The runs (at least one).
-    pub runs: Vec<RlRun>,
-}
-
-/// What training has reached.
-#[derive(Clone, Debug, Default)]
-pub struct Progress {
-    /// The run under way (index into the request's runs).
-    pub run: usize,
-    /// Decisions trained so far in it, and in all.
-    pub decisions: (usize, usize),
-    /// Its mean return per iteration (finite: a non-finite one stops it).
-    pub returns: Vec<f64>,
-    /// Its policy's mean run after the latest iteration.
-    pub greedy: Option<GreedyRun>,
-    /// `d` of that run against the demo, metres.
-    pub d: f64,
-    /// When that mean run first ended within 5 mm of the goal.
-    pub first_reach: Option<FirstReach>,
-    /// Whether its learning curve so far diverged.
-    pub diverged: bool,
-    /// Its training time so far, seconds.
-    pub seconds: f64,
-    /// The runs finished, in order.
-    pub finished: Vec<RunReport>,
-    /// Finished, cancelled or stopped.
-    pub done: bool,
-    /// Cancelled by the user.
-    pub cancelled: bool,
-    /// Why training stopped early, when it did.
-    pub stopped: Option<String>,
-}
+use crate::rl_request::{Progress, RlRequest, RunUpdate, run_label};
 
 /// Trains the runs of one request: one after the other on this thread, or
 /// in the executor's workers, as many at once as it has.

@@ -1,119 +1,9 @@
 //! RL runs trained elsewhere (the browser's workers, one run per worker at a
-//! time): [`RunUpdate`], what a worker sends after each iteration of a run,
-//! made by [`RunUpdate::of`] from the core's `TrainingRun`, and
-//! [`RunBoard`], which gathers the updates of a request's runs, arriving
-//! from several workers at once and in any order, into the same
+//! time): [`RunBoard`] gathers the [`RunUpdate`]s of a request's runs,
+//! arriving from several workers at once and in any order, into the same
 //! [`Progress`] a run trained on the page gives.
 
-use dmpscope_core::Model;
-use dmpscope_core::rl::env::GreedyRun;
-use dmpscope_core::rl::run::{FirstReach, RunReport, TrainingRun};
-use serde::{Deserialize, Serialize};
-
-use super::rl::{Progress, RlRequest};
-
-/// One run's state after an iteration.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct RunUpdate {
-    /// Decisions trained so far.
-    pub decisions: usize,
-    /// The mean return per iteration so far.
-    pub returns: Vec<f64>,
-    /// The policy's mean run after the latest iteration.
-    pub greedy: Option<GreedyRun>,
-    /// `d` of that run against the demo, metres.
-    pub d: f64,
-    /// When that mean run first reached the goal.
-    pub first_reach: Option<FirstReach>,
-    /// Whether the learning curve so far diverged.
-    pub diverged: bool,
-    /// Training time so far, seconds.
-    pub seconds: f64,
-    /// The run's report, in its last update (when it finished).
-    pub report: Option<RunReport>,
-    /// Why the run stopped early, in its last update (when it did).
-    pub stopped: Option<String>,
-    /// Whether this is the run's last update.
-    pub last: bool,
-}
-
-impl RunUpdate {
-    /// The state of `run` (on demo `demo` of `model`) after `seconds` of
-    /// training; the last update when it is done (its report is added by
-    /// [`RunUpdate::with_report`]).
-    pub fn of(run: &TrainingRun, model: &Model, demo: usize, seconds: f64) -> Self {
-        let greedy = run.greedy().cloned();
-        let d = greedy
-            .as_ref()
-            .map_or(0.0, |g| model.path_error(demo, &g.path));
-        Self {
-            decisions: run.trainer().decisions(),
-            returns: run.trainer().returns.clone(),
-            greedy,
-            d,
-            first_reach: run.first_reach(),
-            diverged: run.diverged(),
-            seconds,
-            report: None,
-            stopped: None,
-            last: run.done(),
-        }
-    }
-
-    /// This last update with the finished run's report (run `index` of
-    /// `request`).
-    pub fn with_report(
-        mut self,
-        run: &TrainingRun,
-        model: &Model,
-        request: &RlRequest,
-        index: usize,
-    ) -> Self {
-        let name = request
-            .runs
-            .get(index)
-            .map_or("", |r| r.gains_name.as_str());
-        self.report = run.report(model, name, self.seconds);
-        self
-    }
-
-    /// The last update of a run that stopped early, with why.
-    pub fn stopped(request: &RlRequest, index: usize, why: &str) -> Self {
-        Self {
-            decisions: 0,
-            returns: Vec::new(),
-            greedy: None,
-            d: 0.0,
-            first_reach: None,
-            diverged: false,
-            seconds: 0.0,
-            report: None,
-            stopped: Some(format!("{}: {why}", run_label(request, index))),
-            last: true,
-        }
-    }
-}
-
-/// "`gains` gains, seed `seed`" of run `index`, as messages name a run.
-pub fn run_label(request: &RlRequest, index: usize) -> String {
-    request.runs.get(index).map_or_else(
-        || format!("run {index}"),
-        |r| format!("{} gains, seed {}", r.gains_name, r.seed),
-    )
-}
-
-impl Progress {
-    /// Shows `update` as the run under way (of `steps` decisions).
-    pub fn follow(&mut self, update: RunUpdate, steps: usize) {
-        self.decisions = (update.decisions, steps);
-        self.returns = update.returns;
-        self.greedy = update.greedy;
-        self.d = update.d;
-        self.first_reach = update.first_reach;
-        self.diverged = update.diverged;
-        self.seconds = update.seconds;
-    }
-}
+use crate::rl_request::{Progress, RlRequest, RunUpdate};
 
 /// The updates of a request's runs, as one [`Progress`].
 #[derive(Clone, Debug)]
@@ -197,7 +87,7 @@ mod tests {
     use dmpscope_core::rl::env::EnvOptions;
 
     use super::*;
-    use crate::rl::RlRun;
+    use crate::rl_request::RlRun;
 
     fn request(n: usize) -> RlRequest {
         RlRequest {

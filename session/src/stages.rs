@@ -6,98 +6,22 @@
 use std::sync::{Arc, OnceLock};
 
 use dmpscope_core::arrange::streams::unique_names;
-use dmpscope_core::extract::diagnostics::DiagSettings;
-use dmpscope_core::extract::optimum::{Refined, constrained};
-use dmpscope_core::fit::orientation::OrientationRollout;
-use dmpscope_core::fit::settings::DmpSettings;
-use dmpscope_core::kernels::similarity::Standardised;
-use dmpscope_core::landscape::grid::Grid;
+use dmpscope_core::extract::optimum::constrained;
 use dmpscope_core::report::presets::PAPER_PRESETS;
-use dmpscope_core::{
-    Extraction, Level, Model, PointEval, PrepSettings, RawDemo, Rollout, Unusable, build_model,
-    extract,
-};
+use dmpscope_core::{Level, Model, RawDemo, Unusable, build_model, extract};
 
 use crate::diagnostics::DiagnosticsWork;
 use crate::jobs::Once;
 use crate::landscape::{LandscapeWork, Shown};
 use crate::rl::RlWork;
+use crate::rl_request::RlRequest;
+use crate::session::Session;
+use crate::settings::Settings;
 use crate::stage::Polled;
-use crate::{DemoEntry, RlRequest, Session, Settings};
-
-/// What the model is built from.
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) struct ModelKey {
-    pub(crate) demos: u64,
-    pub(crate) included: Vec<bool>,
-    pub(crate) prep: PrepSettings,
-    pub(crate) dmp: DmpSettings,
-}
-
-/// A model built, and for each of its demos the index in the demos list.
-pub(crate) struct Built {
-    pub(crate) model: Arc<Model>,
-    pub(crate) used: Vec<usize>,
-}
-
-/// The landscape: the model and the grid.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct LandscapeKey {
-    pub(crate) model: u64,
-    pub(crate) grid: Grid,
-}
-
-/// The extraction: the landscape computed and k; `f64`s are compared by
-/// their bits: a key changes when a value does.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct ExtractionKey {
-    pub(crate) landscape: u64,
-    pub(crate) k: u64,
-}
-
-/// The operating point: `f64`s compared by their bits.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct PointKey {
-    pub(crate) model: u64,
-    pub(crate) dm: u64,
-    pub(crate) km: u64,
-}
-
-/// The diagnostics: the extraction they are of and how they are made.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct DiagKey {
-    pub(crate) extraction: ExtractionKey,
-    pub(crate) settings: DiagSettings,
-}
-
-/// The constrained optimum: the extraction's landscape and k, and the
-/// a_peak limit's bits.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct ConstrainedKey {
-    pub(crate) extraction: ExtractionKey,
-    pub(crate) limit: u64,
-}
-
-/// An RL request: the model it trains on and which request (a new one
-/// each time the user starts training).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct RlKey {
-    pub(crate) model: u64,
-    pub(crate) request: u64,
-}
-
-/// The operating point evaluated.
-pub(crate) struct PointValue {
-    pub(crate) eval: PointEval,
-    pub(crate) paths: Vec<Rollout>,
-    /// Every demo's regenerated orientation (`None` without one).
-    pub(crate) turns: Vec<Option<OrientationRollout>>,
-    /// Every demo's standardised forcing term and sigma_f there, and each
-    /// demo's share of S (`None` with one demo): computed when first asked
-    /// for ([`Session::forcing_terms`]), as the views that show them are
-    /// mostly closed while the point is dragged.
-    pub(crate) standardised: OnceLock<(Standardised, Option<Vec<f64>>)>,
-}
+use crate::state::{
+    Built, ConstrainedKey, DemoEntry, DiagKey, ExtractionKey, LandscapeKey, ModelKey, PointKey,
+    PointValue, RlKey,
+};
 
 impl Session {
     pub(crate) fn update_sources(&mut self, settings: &Settings) {
@@ -267,7 +191,8 @@ impl Session {
     /// The diagnostics of the current extraction, recomputed when it or the
     /// diagnostics' settings change (gone while k is dragged).
     pub(crate) fn update_diagnostics(&mut self, settings: &Settings) {
-        let ready = found(self.extraction.value()).zip(self.extraction.key().copied());
+        let ready =
+            crate::state::found(self.extraction.value()).zip(self.extraction.key().copied());
         let (Some((found, extraction)), Some((model, _)), Some(shown)) =
             (ready, self.model_and_version(), &self.shown)
         else {
@@ -439,14 +364,4 @@ impl Session {
             .value()
             .map(|b| (b.model.clone(), self.model.version()))
     }
-}
-
-/// The extracted gains of an extraction stage's value.
-pub(crate) fn found(value: Option<&dmpscope_core::Result<Extraction>>) -> Option<&Extraction> {
-    value.and_then(|r| r.as_ref().ok())
-}
-
-/// The constrained optimum of its stage's value.
-pub(crate) fn within(value: Option<&Option<Refined>>) -> Option<Option<&Refined>> {
-    value.map(Option::as_ref)
 }

@@ -2,8 +2,6 @@
 //! landscape to show (or it is still coming): a user is never left with a
 //! spinner that waits for nothing.
 
-use super::Session;
-
 /// Where the session is, in the words the window shows.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Status {
@@ -61,39 +59,5 @@ impl Status {
             ),
             Self::Ready => "The landscape is complete.".into(),
         }
-    }
-}
-
-/// The status of `session`.
-pub(super) fn of(session: &Session) -> Status {
-    if session.slots.is_empty() {
-        return Status::NoSources;
-    }
-    if session.demos.is_empty() {
-        return if session.loading() {
-            Status::Loading
-        } else {
-            Status::NoDemos
-        };
-    }
-    if let Some(why) = session.model_error() {
-        return Status::NoUsableDemo(why.to_owned());
-    }
-    let (done, total) = session
-        .shown()
-        .map_or((0, 0), |s| (s.snapshot.done, s.snapshot.total));
-    if session.landscape_running() {
-        Status::Computing(done, total)
-    } else if total > 0 && done == total {
-        Status::Ready
-    } else if session.landscape_cancelled() {
-        Status::Cancelled(done, total)
-    } else if session.landscape_failed() {
-        Status::Stopped(done, total)
-    } else if session.model().is_none() {
-        // Not built yet: the first update has not run.
-        Status::Computing(0, 0)
-    } else {
-        Status::NoLandscape
     }
 }

@@ -23,8 +23,8 @@ use dmpscope_core::rl::run::TrainingRun;
 use dmpscope_core::{Model, PreparedDemo};
 use serde::{Deserialize, Serialize};
 
-use crate::rl::RlRequest;
-use crate::rl_board::RunUpdate;
+use crate::rl_request::RlRequest;
+use crate::rl_request::RunUpdate;
 use crate::workers::Setup;
 
 /// A model as it travels to a worker: what [`Model::new`] needs, as

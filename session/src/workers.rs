@@ -24,7 +24,7 @@ use dmpscope_core::landscape::grid::Grid;
 use dmpscope_core::{Model, Result};
 use serde::{Deserialize, Serialize};
 
-use crate::rl::RlRequest;
+use crate::rl_request::RlRequest;
 
 /// Pieces a worker holds at once by default (one computing, one waiting,
 /// so it never idles while the owner answers).

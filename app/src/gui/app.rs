@@ -35,10 +35,10 @@ pub struct DmpApp {
     /// (test harnesses, whose renderer clears to transparent).
     clear_paints_background: bool,
     #[cfg(feature = "testing")]
-    pub(super) frame_watch: super::testing::FrameWatch,
+    pub(super) frame_watch: super::test_hooks::FrameWatch,
     /// The browser tests' requests and the state they read.
     #[cfg(feature = "testing")]
-    pub(super) hooks: Option<super::testing::SharedHooks>,
+    pub(super) hooks: Option<super::test_hooks::SharedHooks>,
 }
 
 impl DmpApp {

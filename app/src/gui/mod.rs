@@ -20,6 +20,8 @@ mod heatmap;
 mod panels;
 mod plots;
 #[cfg(feature = "testing")]
+mod test_hooks;
+#[cfg(feature = "testing")]
 mod testing;
 mod timeline;
 mod tradeoff;
@@ -29,7 +31,7 @@ mod view_state;
 pub use app::DmpApp;
 pub use commands::{Command, Export, Map};
 #[cfg(feature = "testing")]
-pub use testing::{SharedHooks, TestHooks};
+pub use test_hooks::{SharedHooks, TestHooks};
 pub use view_state::{RlChoices, ViewState};
 
 /// Opens the app window on `files` (the bundled sample when empty).

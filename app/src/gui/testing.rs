@@ -1,125 +1,14 @@
-//! The browser tests' view of the app (feature `testing`, off in release
-//! builds): [`TestHooks`], shared with whoever serves the tests (the page's
-//! `window.dmpscope_*` functions, installed by the app's `web` module),
-//! carries their requests in and [`DmpApp::test_state`] out, and
-//! [`FrameWatch`] counts frames. Nothing here recomputes the pipeline: it
-//! reads what the session already holds.
-
-use std::cell::RefCell;
-use std::rc::Rc;
+//! The browser tests' view of the app (feature `testing`): the requests of
+//! [`super::test_hooks::TestHooks`] served and [`DmpApp::test_state`]
+//! returned. Nothing here recomputes the pipeline: it reads what the
+//! session already holds.
 
 use eframe::egui;
+
 use web_time::Instant;
 
 use super::app::DmpApp;
-
-/// What the tests asked for and what they read.
-#[derive(Debug)]
-pub struct TestHooks {
-    /// Training runs asked for, `(steps, seed)`, not yet started.
-    pub train: Vec<(usize, u64)>,
-    /// Grid sizes asked for (points per axis), not yet applied.
-    pub grid: Vec<usize>,
-    /// The app's state as JSON, written every frame.
-    pub state: String,
-    /// The parts of the window `web/tests/frame_probe.mjs` leaves out and
-    /// its other requests (frames back to back): bits of `app::part`.
-    pub hide: u32,
-}
-
-impl Default for TestHooks {
-    /// No requests, and an empty JSON object until the first frame.
-    fn default() -> Self {
-        Self {
-            train: Vec::new(),
-            grid: Vec::new(),
-            state: "{}".to_owned(),
-            hide: 0,
-        }
-    }
-}
-
-/// [`TestHooks`] shared between the app and the tests' entry points.
-pub type SharedHooks = Rc<RefCell<TestHooks>>;
-
-/// Frames drawn and the longest interval between frames while the
-/// landscape was computing.
-#[derive(Default)]
-pub struct FrameWatch {
-    last: Option<Instant>,
-    frames: u64,
-    longest_ms_computing: f64,
-    /// The frame that ended the longest interval, and what the session was
-    /// doing at the frame before it.
-    longest_at: (u64, String),
-    /// The session's status at the last frame.
-    status: String,
-    /// The app's own CPU time of its longest frame while computing (egui's
-    /// `cpu_usage`, without the renderer's), and the status then.
-    cpu_ms_computing: (f64, String),
-    /// When this frame's `ui` started.
-    ui_start: Option<Instant>,
-    /// Per frame while computing (the first 40): the interval before it,
-    /// egui's CPU of the frame before it (logic and painting) and the
-    /// app's own `ui` time of the frame before it, ms.
-    log: Vec<[f64; 3]>,
-    /// The last frame's own `ui` time, ms.
-    last_ui_ms: f64,
-    /// Whether the landscape was computing at the last frame.
-    last_computing: bool,
-}
-
-impl FrameWatch {
-    /// Records a frame; `computing` says whether the landscape has started
-    /// and is not complete, `status` what the session is doing. An interval
-    /// counts as one while computing when the landscape was computing at
-    /// either of its frames (a frame that starts during the landscape and
-    /// ends after it is one the user waited for).
-    pub fn frame(&mut self, computing: bool, status: String, cpu_s: Option<f32>) {
-        let counts = computing || self.last_computing;
-        self.last_computing = computing;
-        let now = Instant::now();
-        self.ui_start = Some(now);
-        let cpu_ms = f64::from(cpu_s.unwrap_or(0.0)) * 1e3;
-        if counts && self.log.len() < 40 {
-            let gap = self
-                .last
-                .map_or(0.0, |l| now.duration_since(l).as_secs_f64() * 1e3);
-            self.log.push([gap, cpu_ms, self.last_ui_ms]);
-        }
-        if counts && cpu_ms > self.cpu_ms_computing.0 {
-            self.cpu_ms_computing = (cpu_ms, self.status.clone());
-        }
-        if let Some(last) = self.last
-            && counts
-        {
-            let ms = now.duration_since(last).as_secs_f64() * 1e3;
-            if ms > self.longest_ms_computing {
-                self.longest_ms_computing = ms;
-                self.longest_at = (self.frames, std::mem::take(&mut self.status));
-            }
-        }
-        self.last = Some(now);
-        self.frames += 1;
-        self.status = status;
-    }
-}
-
-impl FrameWatch {
-    /// Leaves `spent` (the tests' own hook) out of this frame's `ui` time.
-    pub fn exclude(&mut self, spent: std::time::Duration) {
-        if let Some(start) = &mut self.ui_start {
-            *start += spent;
-        }
-    }
-
-    /// Records the end of this frame's `ui`.
-    pub fn ui_done(&mut self) {
-        if let Some(start) = self.ui_start.take() {
-            self.last_ui_ms = start.elapsed().as_secs_f64() * 1e3;
-        }
-    }
-}
+use super::test_hooks::SharedHooks;
 
 impl DmpApp {
     /// Serves the tests through `hooks` (their requests in, the state out).

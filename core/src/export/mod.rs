@@ -4,7 +4,7 @@
 //! [`foxglove`], [`foxglove_json`]), ROS 2 trajectories
 //! ([`ros_traj`]), and recordings written as MCAP ([`write`]).
 //!
-//! May use: generalise, extract, landscape, fit, prepare, load.
+//! May use: generalise, extract, landscape, fit, load.
 
 pub mod dmp_doc;
 pub mod foxglove;

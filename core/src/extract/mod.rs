@@ -4,7 +4,7 @@
 //! the pick for the robot ([`allowed`]), and gains as a robot sees them
 //! ([`robot`]).
 //!
-//! May use: landscape, kernels, fit, prepare, load.
+//! May use: landscape, fit, load.
 
 pub mod allowed;
 pub mod diagnostics;

@@ -3,7 +3,7 @@
 //! orientation ([`orientation`]), and one skill from many demos
 //! ([`skill`]).
 //!
-//! May use: landscape, kernels, fit, prepare.
+//! May use: landscape, kernels, fit.
 
 pub mod orientation;
 pub mod primitive;

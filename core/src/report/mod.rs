@@ -2,7 +2,7 @@
 //! paper's presets ([`presets`]), and their renderings for terminals,
 //! spreadsheets and documents ([`table_text`], [`text`]).
 //!
-//! May use: extract, landscape, fit, prepare, arrange, load.
+//! May use: extract, landscape, prepare, load.
 
 pub mod presets;
 pub mod summary;

@@ -6,6 +6,8 @@
 //! ([`point_mass`]), the stability figure ([`outcome`]) and a training run
 //! with its figures ([`run`]). No threads: a
 //! [`Trainer`] advances one [`Trainer::step`] at a time.
+//!
+//! May use: landscape.
 
 pub mod env;
 pub mod loss;
