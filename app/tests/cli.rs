@@ -55,11 +55,10 @@ fn info_lists_the_ten_sample_demos() {
     }
 }
 
-#[test]
-fn landscape_json_has_exactly_the_documented_shape() {
-    let doc = landscape_json(&[]);
+/// The landscape JSON's top-level keys; no orientation error on the reach sample.
+fn check_the_top_level_keys(doc: &Value) {
     assert_eq!(
-        sorted_keys(&doc),
+        sorted_keys(doc),
         [
             "a_peak",
             "d_rot_sum",
@@ -83,7 +82,11 @@ fn landscape_json_has_exactly_the_documented_shape() {
             .iter()
             .all(|row| row.as_array().expect("row").iter().all(Value::is_null))
     );
-    let n = 12;
+}
+
+/// The axes, k and the maps of an `n` x `n` grid, J = S + k sum d at every
+/// point; returns the grid's least J.
+fn check_the_grids(doc: &Value, n: usize) -> f64 {
     assert_eq!(doc["dm"].as_array().expect("dm").len(), n);
     assert_eq!(doc["km"].as_array().expect("km").len(), n);
     assert_eq!(doc["dm"][0].as_f64(), Some(0.1));
@@ -103,6 +106,11 @@ fn landscape_json_has_exactly_the_documented_shape() {
             grid_min = grid_min.min(jv);
         }
     }
+    grid_min
+}
+
+/// The optimum's keys, and its J at most the grid's least.
+fn check_the_optimum(doc: &Value, grid_min: f64) {
     let opt = &doc["optimum"];
     assert_eq!(
         sorted_keys(opt),
@@ -121,6 +129,10 @@ fn landscape_json_has_exactly_the_documented_shape() {
         ]
     );
     assert!(opt["j"].as_f64().expect("j") <= grid_min);
+}
+
+/// Table I's rows (Extracted, then the paper's gains) and the ten demos.
+fn check_the_table_and_demos(doc: &Value) {
     let names: Vec<&str> = doc["table"]
         .as_array()
         .expect("table")
@@ -142,8 +154,17 @@ fn landscape_json_has_exactly_the_documented_shape() {
 }
 
 #[test]
-fn extract_json_is_the_same_report_as_landscape_json() {
+fn landscape_json_has_exactly_the_documented_shape() {
     let doc = landscape_json(&[]);
+    check_the_top_level_keys(&doc);
+    let n = 12;
+    let grid_min = check_the_grids(&doc, n);
+    check_the_optimum(&doc, grid_min);
+    check_the_table_and_demos(&doc);
+}
+
+/// `extract --json` on the sample at 12 points, without diagnostics.
+fn extract_json() -> Value {
     let out = dmpscope(&[
         "extract",
         sample().to_str().expect("path"),
@@ -153,8 +174,12 @@ fn extract_json_is_the_same_report_as_landscape_json() {
         "--no-diagnostics",
     ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
-    let report: Value = serde_json::from_slice(&out.stdout).expect("json");
-    let keys = sorted_keys(&report);
+    serde_json::from_slice(&out.stdout).expect("json")
+}
+
+/// The extract report's top-level keys.
+fn check_the_report_keys(report: &Value) {
+    let keys = sorted_keys(report);
     assert_eq!(
         keys,
         [
@@ -177,6 +202,11 @@ fn extract_json_is_the_same_report_as_landscape_json() {
             "table"
         ]
     );
+}
+
+/// What the report shares with the landscape JSON; returns the pick's row of
+/// Table I, the one it adds.
+fn check_what_the_landscape_shares(report: &Value, doc: &Value) -> Value {
     for key in ["demos", "k", "optimum"] {
         assert_eq!(report[key], doc[key], "{key}");
     }
@@ -190,6 +220,12 @@ fn extract_json_is_the_same_report_as_landscape_json() {
             .starts_with("Picked (")
     );
     assert_eq!(Value::Array(table), doc["table"]);
+    picked
+}
+
+/// The pick's keys, its row of Table I, the skill mode, the tolerance, and
+/// the pick's gains for the robot.
+fn check_the_pick(report: &Value, picked: &Value) {
     // The pick: where, by which rule and why, and for the robot.
     let pick = &report["pick"];
     let mut pick_keys = sorted_keys(pick);
@@ -218,10 +254,24 @@ fn extract_json_is_the_same_report_as_landscape_json() {
     let t = robot["duration_s"].as_f64().expect("T");
     let stiffness = robot["stiffness_per_mass"].as_f64().expect("K/M real");
     assert!((stiffness - km / (t * t)).abs() <= 1e-12 * stiffness);
+}
+
+/// The loading choices: the defaults.
+fn check_the_loading_choices(report: &Value) {
     // The loading choices: the defaults, the method as written.
     assert_eq!(report["loading"]["units"], "m");
     assert_eq!(report["loading"]["trim_rest"], false);
     assert_eq!(report["loading"]["sg_window"], 21);
+}
+
+#[test]
+fn extract_json_is_the_same_report_as_landscape_json() {
+    let doc = landscape_json(&[]);
+    let report = extract_json();
+    check_the_report_keys(&report);
+    let picked = check_what_the_landscape_shares(&report, &doc);
+    check_the_pick(&report, &picked);
+    check_the_loading_choices(&report);
 }
 
 #[test]

@@ -101,10 +101,8 @@ fn python_with(modules: &str) -> Option<String> {
     None
 }
 
-#[test]
-fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
-    let demo = tmp("demo.json");
-    let skill = tmp("skill.json");
+/// Writes demo 1's export to a new start, goal and duration, and the skill's to a new goal.
+fn write_a_demo_and_a_skill_export(demo: &str, skill: &str) {
     run(&regen(&[
         "--demo",
         "1",
@@ -119,7 +117,7 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
         "--duration",
         "2",
         "--out",
-        &demo,
+        demo,
     ]));
     run(&regen(&[
         "--skill",
@@ -130,12 +128,14 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
         "0.3",
         "1.1",
         "--out",
-        &skill,
+        skill,
     ]));
-    // A demo with orientation (the planted sample) to a new goal orientation.
-    let oriented = tmp("oriented.json");
-    run(&planted_to_a_goal_orientation(&oriented, &[]));
-    let od = json(&oriented);
+}
+
+/// Writes the oriented export and checks its rollout starts at the new orientation.
+fn write_and_check_the_oriented_export(oriented: &str) {
+    run(&planted_to_a_goal_orientation(oriented, &[]));
+    let od = json(oriented);
     let q = od["rollout"]["q"].as_array().expect("rollout.q");
     assert_eq!(q.len(), 1001);
     assert_eq!(
@@ -143,7 +143,11 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
         "starts exactly at q0_new"
     );
     assert!(od["gains"]["settling_time_s"].as_f64().expect("settling") > 0.0);
-    let doc = json(&demo);
+}
+
+/// Checks the demo's export: its header, real-time gains, target and rollout.
+fn check_the_demo_export(demo: &str) -> Value {
+    let doc = json(demo);
     assert_eq!(doc["schema"], "dmpscope.dmp");
     assert_eq!(doc["version"], 2);
     assert_eq!(doc["source"], "demo");
@@ -159,19 +163,23 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
     let t = doc["rollout"]["t"].as_array().expect("t");
     assert_eq!(t[0].as_f64(), Some(0.0));
     assert!((t[1000].as_f64().expect("t") - 2.0).abs() < 1e-12);
-    let sk = json(&skill);
+    doc
+}
+
+/// Checks the skill's export: its source, demos, scaling and band.
+fn check_the_skill_export(skill: &str) {
+    let sk = json(skill);
     assert_eq!(sk["source"], "skill");
     assert_eq!(sk["demos"].as_array().expect("demos").len(), 10);
     assert_eq!(sk["scaling"]["mode"], "frame");
     assert_eq!(sk["rollout_sd"].as_array().expect("band").len(), 1001);
+}
 
-    let Some(python) = python_with("numpy") else {
-        return;
-    };
-    let runner = repo().join("examples/run_dmp.py");
-    let out = Command::new(&python)
-        .arg(&runner)
-        .args([&demo, &skill, &oriented])
+/// The reference runner runs the three exports and says each is ok.
+fn the_runner_accepts_the_exports(python: &str, runner: &std::path::Path, exports: [&str; 3]) {
+    let out = Command::new(python)
+        .arg(runner)
+        .args(exports)
         .output()
         .expect("run the runner");
     assert!(
@@ -190,6 +198,10 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
         "{}",
         text(&out.stdout)
     );
+}
+
+/// The reference runner fails the demo's export with one rollout value perturbed.
+fn the_runner_refuses_a_perturbed_rollout(python: &str, runner: &std::path::Path, doc: &Value) {
     // A runner that cannot tell a wrong rollout from a right one is no
     // check: a perturbed golden value must fail it.
     let mut bad = doc.clone();
@@ -197,27 +209,51 @@ fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
     bad["rollout"]["y"][500][1] = Value::from(v + 1e-6);
     let bad_path = tmp("perturbed.json");
     std::fs::write(&bad_path, bad.to_string()).expect("write");
-    let out = Command::new(&python)
-        .arg(&runner)
+    let out = Command::new(python)
+        .arg(runner)
         .arg(&bad_path)
         .output()
         .expect("run the runner");
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stdout));
+}
 
-    let Some(python) = python_with("jsonschema") else {
-        return;
-    };
+/// The three exports validate against the `dmpscope.dmp` JSON Schema.
+fn the_exports_fit_the_schema(python: &str, exports: [&str; 3]) {
     let schema = repo().join("docs/dmpscope.dmp.schema.json");
     let check = "import json, sys, jsonschema\n\
          s = json.load(open(sys.argv[1]))\n\
          for f in sys.argv[2:]: jsonschema.validate(json.load(open(f)), s)\n";
-    let out = Command::new(&python)
+    let out = Command::new(python)
         .args(["-c", check])
         .arg(&schema)
-        .args([&demo, &skill, &oriented])
+        .args(exports)
         .output()
         .expect("validate");
     assert!(out.status.success(), "schema: {}", text(&out.stderr));
+}
+
+#[test]
+fn the_json_export_runs_in_the_reference_runner_and_fits_its_schema() {
+    let demo = tmp("demo.json");
+    let skill = tmp("skill.json");
+    write_a_demo_and_a_skill_export(&demo, &skill);
+    // A demo with orientation (the planted sample) to a new goal orientation.
+    let oriented = tmp("oriented.json");
+    write_and_check_the_oriented_export(&oriented);
+    let doc = check_the_demo_export(&demo);
+    check_the_skill_export(&skill);
+
+    let Some(python) = python_with("numpy") else {
+        return;
+    };
+    let runner = repo().join("examples/run_dmp.py");
+    the_runner_accepts_the_exports(&python, &runner, [&demo, &skill, &oriented]);
+    the_runner_refuses_a_perturbed_rollout(&python, &runner, &doc);
+
+    let Some(python) = python_with("jsonschema") else {
+        return;
+    };
+    the_exports_fit_the_schema(&python, [&demo, &skill, &oriented]);
 }
 
 #[test]
@@ -250,27 +286,27 @@ fn bad_targets_are_refused_naming_the_argument_and_nothing_is_written() {
     }
 }
 
-#[test]
-fn the_mcap_export_holds_ros_trajectories_that_decode_back() {
-    let mcap_path = tmp("robot.mcap");
-    let json_path = tmp("robot.json");
-    let target = [
-        "--demo",
-        "3",
-        "--goal",
-        "0.5",
-        "0.1",
-        "1.2",
-        "--duration",
-        "1.5",
-    ];
-    let mut args = regen(&target);
-    args.extend(["--out".into(), mcap_path.clone()]);
+/// The generalised rollout of the JSON export: times, positions, velocities, accelerations.
+struct Rollout {
+    t: Vec<f64>,
+    y: Vec<[f64; 3]>,
+    v: Vec<[f64; 3]>,
+    a: Vec<[f64; 3]>,
+}
+
+/// Writes the same target's export to the MCAP and to the JSON path.
+fn export_one_target_twice(target: &[&str], mcap_path: &str, json_path: &str) {
+    let mut args = regen(target);
+    args.extend(["--out".into(), mcap_path.to_owned()]);
     run(&args);
-    let mut args = regen(&target);
-    args.extend(["--out".into(), json_path.clone()]);
+    let mut args = regen(target);
+    args.extend(["--out".into(), json_path.to_owned()]);
     run(&args);
-    let doc = json(&json_path);
+}
+
+/// Reads the rollout of the JSON export at `json_path`.
+fn read_the_json_rollout(json_path: &str) -> Rollout {
+    let doc = json(json_path);
     let rows = |key: &str| -> Vec<[f64; 3]> {
         doc["rollout"][key]
             .as_array()
@@ -286,56 +322,97 @@ fn the_mcap_export_holds_ros_trajectories_that_decode_back() {
         .iter()
         .map(|v| v.as_f64().expect("t"))
         .collect();
+    Rollout { t, y, v, a }
+}
 
-    let bytes = std::fs::read(&mcap_path).expect("mcap");
+/// Checks the nav_msgs/Path message against the rollout and returns its topic.
+fn check_the_path_message(
+    message: &mcap::Message<'_>,
+    schema: &mcap::Schema<'_>,
+    rollout: &Rollout,
+) -> String {
+    let (t, y) = (&rollout.t, &rollout.y);
+    let topic = message.channel.topic.clone();
+    assert_eq!(topic, "/dmp/reach10_demo_03/path");
+    assert_eq!(message.channel.message_encoding, "cdr");
+    assert_eq!(schema.encoding, "ros2msg");
+    let (stamp, frame, poses) = decode_path(&message.data).expect("Path");
+    assert_eq!(frame, "world");
+    assert_eq!(poses.len(), 1001);
+    for (k, (s, p, q)) in poses.iter().enumerate() {
+        assert_eq!(*p, y[k], "pose {k}");
+        assert_eq!(*q, [0.0, 0.0, 0.0, 1.0], "no orientation: the identity");
+        assert_eq!(*s, stamp + (t[k] * 1e9).round() as i64);
+    }
+    topic
+}
+
+/// Checks the MultiDOFJointTrajectory message against the rollout and returns its topic.
+fn check_the_trajectory_message(message: &mcap::Message<'_>, rollout: &Rollout) -> String {
+    let Rollout { t, y, v, a } = rollout;
+    let topic = message.channel.topic.clone();
+    assert_eq!(topic, "/dmp/reach10_demo_03/trajectory");
+    let traj = decode_multi_dof(&message.data).expect("trajectory");
+    assert_eq!(traj.joint, "end_effector");
+    assert_eq!(
+        (traj.y.len(), traj.v.len(), traj.a.len()),
+        (1001, 1001, 1001)
+    );
+    assert_eq!(
+        (traj.y.clone(), traj.v.clone(), traj.a.clone()),
+        (y.clone(), v.clone(), a.clone())
+    );
+    for (k, tk) in traj.t.iter().enumerate() {
+        assert!((tk - t[k]).abs() <= 1e-9, "time_from_start {k}");
+    }
+    assert!(traj.orientation.is_none(), "reach10 has no orientation");
+    topic
+}
+
+/// Checks the MCAP's two trajectory messages against the rollout.
+fn check_the_mcap_messages(mcap_path: &str, rollout: &Rollout) {
+    let bytes = std::fs::read(mcap_path).expect("mcap");
     let mut seen = Vec::new();
     for message in mcap::MessageStream::new(&bytes).expect("mcap") {
         let message = message.expect("message");
         let schema = message.channel.schema.as_ref().expect("schema");
-        let topic = message.channel.topic.clone();
         match schema.name.as_str() {
-            PATH_NAME => {
-                assert_eq!(topic, "/dmp/reach10_demo_03/path");
-                assert_eq!(message.channel.message_encoding, "cdr");
-                assert_eq!(schema.encoding, "ros2msg");
-                let (stamp, frame, poses) = decode_path(&message.data).expect("Path");
-                assert_eq!(frame, "world");
-                assert_eq!(poses.len(), 1001);
-                for (k, (s, p, q)) in poses.iter().enumerate() {
-                    assert_eq!(*p, y[k], "pose {k}");
-                    assert_eq!(*q, [0.0, 0.0, 0.0, 1.0], "no orientation: the identity");
-                    assert_eq!(*s, stamp + (t[k] * 1e9).round() as i64);
-                }
-                seen.push(topic);
-            }
-            MULTI_DOF_NAME => {
-                assert_eq!(topic, "/dmp/reach10_demo_03/trajectory");
-                let traj = decode_multi_dof(&message.data).expect("trajectory");
-                assert_eq!(traj.joint, "end_effector");
-                assert_eq!(
-                    (traj.y.len(), traj.v.len(), traj.a.len()),
-                    (1001, 1001, 1001)
-                );
-                assert_eq!(
-                    (traj.y.clone(), traj.v.clone(), traj.a.clone()),
-                    (y.clone(), v.clone(), a.clone())
-                );
-                for (k, tk) in traj.t.iter().enumerate() {
-                    assert!((tk - t[k]).abs() <= 1e-9, "time_from_start {k}");
-                }
-                assert!(traj.orientation.is_none(), "reach10 has no orientation");
-                seen.push(topic);
-            }
+            PATH_NAME => seen.push(check_the_path_message(&message, schema, rollout)),
+            MULTI_DOF_NAME => seen.push(check_the_trajectory_message(&message, rollout)),
             _ => {}
         }
     }
     assert_eq!(seen.len(), 2, "{seen:?}");
+}
+
+/// `info` reads the MCAP export back as demonstrations.
+fn info_reads_the_export_back(mcap_path: &str) {
     // Loading the export gives back the ten demos and says what it skipped.
-    let out = dmpscope(&["info", &mcap_path]);
+    let out = dmpscope(&["info", mcap_path]);
     assert!(out.status.success());
     let said = format!("{}{}", text(&out.stdout), text(&out.stderr));
     assert!(said.contains("10 demonstrations"), "{said}");
     assert!(text(&out.stderr).contains("a trajectory dmpscope exported"));
+}
+
+#[test]
+fn the_mcap_export_holds_ros_trajectories_that_decode_back() {
+    let mcap_path = tmp("robot.mcap");
+    let json_path = tmp("robot.json");
+    let target = [
+        "--demo",
+        "3",
+        "--goal",
+        "0.5",
+        "0.1",
+        "1.2",
+        "--duration",
+        "1.5",
+    ];
+    export_one_target_twice(&target, &mcap_path, &json_path);
+    let rollout = read_the_json_rollout(&json_path);
+    check_the_mcap_messages(&mcap_path, &rollout);
+    info_reads_the_export_back(&mcap_path);
 }
 
 #[test]

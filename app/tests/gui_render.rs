@@ -13,6 +13,7 @@ use std::sync::{Arc, Once};
 
 use dmpscope::gui::DmpApp;
 use dmpscope::session::{Runner, Settings};
+use dmpscope_core::geom::Vec3;
 use eframe::egui_wgpu::{WgpuSetup, WgpuSetupCreateNew};
 use eframe::wgpu;
 use egui_kittest::kittest::Queryable;
@@ -203,80 +204,90 @@ fn drag(h: &mut Harness<'_, DmpApp>, from: egui::Pos2, to: egui::Pos2, modifiers
     h.run_steps(2);
 }
 
-#[test]
-fn the_goal_and_start_of_a_new_target_drag_in_the_3d_view() {
-    if !have_lavapipe() {
-        return;
-    }
-    let mut h = harness();
+/// Opens a new target and runs the DMP there; the run's own start and goal.
+fn open_a_new_target(h: &mut Harness<'_, DmpApp>) -> (Vec3, Vec3) {
     h.get_by_role_and_label(egui::accesskit::Role::Button, "New target")
         .click();
     h.run_steps(2);
     h.get_by_label("Run the DMP at a new target").click();
     h.run_steps(4);
-    let own = {
-        let g = support::run_at_new_target(&h);
-        assert_eq!(g.out.warnings, Vec::<String>::new());
-        (g.out.start, g.out.goal)
-    };
-    h.snapshot("window_new_target");
-    let [start, goal] = h
-        .state()
+    let g = support::run_at_new_target(h);
+    assert_eq!(g.out.warnings, Vec::<String>::new());
+    (g.out.start, g.out.goal)
+}
+
+/// Where the 3D view drew the start and goal handles.
+fn handles(h: &Harness<'_, DmpApp>) -> [egui::Pos2; 2] {
+    h.state()
         .view()
         .view3d
         .handles_on_screen()
-        .expect("handles drawn");
+        .expect("handles drawn")
+}
+
+/// Drags the goal handle and checks the goal moved on its plane and the path follows.
+fn drag_the_goal_on_its_plane(h: &mut Harness<'_, DmpApp>, goal: egui::Pos2, own_goal: Vec3) {
     // The goal moves on the horizontal plane through it.
     drag(
-        &mut h,
+        h,
         goal,
         goal + egui::vec2(-90.0, 25.0),
         egui::Modifiers::NONE,
     );
     let spec = *h.state().session().generalise_spec().expect("on");
     let moved = spec.target.goal.expect("the drag set a goal");
-    let shift = ((moved[0] - own.1[0]).powi(2) + (moved[1] - own.1[1]).powi(2)).sqrt();
+    let shift = ((moved[0] - own_goal[0]).powi(2) + (moved[1] - own_goal[1]).powi(2)).sqrt();
     assert!(
         shift > 0.02,
         "the goal moved {shift} m: {moved:?} from {:?}",
-        own.1
+        own_goal
     );
-    assert!((moved[2] - own.1[2]).abs() < 1e-5, "at the same height");
-    let g = support::run_at_new_target(&h);
+    assert!((moved[2] - own_goal[2]).abs() < 1e-5, "at the same height");
+    let g = support::run_at_new_target(h);
     assert_eq!(g.out.goal, moved);
     assert!(
         g.out.final_error < 0.05,
         "the path follows: {}",
         g.out.final_error
     );
+}
+
+/// Drags the start handle with Shift and checks the start moved up only.
+fn drag_the_start_up(h: &mut Harness<'_, DmpApp>, start: egui::Pos2, own_start: Vec3) {
     // With Shift the start moves up only.
     drag(
-        &mut h,
+        h,
         start,
         start + egui::vec2(0.0, -40.0),
         egui::Modifiers::SHIFT,
     );
     let spec = *h.state().session().generalise_spec().expect("on");
     let up = spec.target.start.expect("the drag set a start");
-    assert!(up[2] - own.0[2] > 0.01, "up by {}", up[2] - own.0[2]);
-    assert!((up[0] - own.0[0]).abs() < 1e-5 && (up[1] - own.0[1]).abs() < 1e-5);
-    h.snapshot("window_new_target_moved");
+    assert!(
+        up[2] - own_start[2] > 0.01,
+        "up by {}",
+        up[2] - own_start[2]
+    );
+    assert!((up[0] - own_start[0]).abs() < 1e-5 && (up[1] - own_start[1]).abs() < 1e-5);
+}
+
+/// Clicks Reset and checks the target is the demo's again.
+fn reset_returns_to_the_demo(h: &mut Harness<'_, DmpApp>) {
     // Reset returns to the demo.
     h.get_by_role_and_label(egui::accesskit::Role::Button, "Reset")
         .click();
     h.run_steps(2);
     let spec = *h.state().session().generalise_spec().expect("on");
     assert_eq!((spec.target.start, spec.target.goal), (None, None));
+}
+
+/// Drags across the goal with Ctrl and checks the goal turned and the run turns to it.
+fn turn_the_goal_with_ctrl(h: &mut Harness<'_, DmpApp>) {
     // With Ctrl (Cmd) a drag across the goal turns its orientation about the
     // vertical, and the run turns to it (method.md section 12).
-    let [_, goal] = h
-        .state()
-        .view()
-        .view3d
-        .handles_on_screen()
-        .expect("handles drawn");
+    let [_, goal] = handles(h);
     drag(
-        &mut h,
+        h,
         goal,
         goal + egui::vec2(60.0, 0.0),
         egui::Modifiers::COMMAND,
@@ -287,7 +298,7 @@ fn the_goal_and_start_of_a_new_target_drag_in_the_3d_view() {
         .target
         .goal_orientation
         .expect("the drag turned the goal");
-    let g = support::run_at_new_target(&h);
+    let g = support::run_at_new_target(h);
     let own_goal = h.state().session().model().expect("model").demos()[0]
         .orientation
         .as_ref()
@@ -301,4 +312,20 @@ fn the_goal_and_start_of_a_new_target_drag_in_the_3d_view() {
         end < by,
         "the run turns towards it: ends {end} degrees away"
     );
+}
+
+#[test]
+fn the_goal_and_start_of_a_new_target_drag_in_the_3d_view() {
+    if !have_lavapipe() {
+        return;
+    }
+    let mut h = harness();
+    let (own_start, own_goal) = open_a_new_target(&mut h);
+    h.snapshot("window_new_target");
+    let [start, goal] = handles(&h);
+    drag_the_goal_on_its_plane(&mut h, goal, own_goal);
+    drag_the_start_up(&mut h, start, own_start);
+    h.snapshot("window_new_target_moved");
+    reset_returns_to_the_demo(&mut h);
+    turn_the_goal_with_ctrl(&mut h);
 }

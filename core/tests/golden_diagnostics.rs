@@ -13,12 +13,15 @@ mod golden_data;
 use std::sync::Arc;
 
 use dmpscope_core::extract;
+use dmpscope_core::extract::diagnostics::Diagnostics;
 use dmpscope_core::extract::diagnostics::balance::depth;
 use dmpscope_core::extract::diagnostics::resample::percentiles;
 use dmpscope_core::extract::diagnostics::{DiagSettings, DiagnosticsJob};
 use dmpscope_core::landscape::grid::{Axis, AxisScale, FillOrder, Grid, LandscapeJob};
 use dmpscope_core::report::table::TableRow;
+use dmpscope_core::{Extraction, Landscape, Model};
 use golden_data::{close, f, fs, golden, model};
+use serde_json::Value;
 
 const EXACT: f64 = 1e-9;
 const LOCATION: f64 = 1e-5;
@@ -33,18 +36,26 @@ fn grid() -> Grid {
     Grid { dm: axis, km: axis }
 }
 
-#[test]
-fn the_diagnostics_match_the_reference() {
-    let g = golden("expected_diagnostics.json");
-    let model = Arc::new(model());
+/// The landscape on the reference's grid and its extraction, whose optimum
+/// matches the reference's.
+fn landscape_and_extraction(g: &Value, model: &Arc<Model>) -> (Landscape, Extraction) {
     let mut job = LandscapeJob::new(model.clone(), grid(), FillOrder::Raster).expect("job");
     while !job.step(usize::MAX) {}
     let land = job.into_landscape();
-    let x = extract(&model, &land, 20.0).expect("extraction");
+    let x = extract(model, &land, 20.0).expect("extraction");
     close(x.j, f(&g["optimum"]["j"]), EXACT, "J*");
     close(x.eval.dm, f(&g["optimum"]["dm"]), LOCATION, "D/M*");
     close(x.eval.km, f(&g["optimum"]["km"]), LOCATION, "K/M*");
+    (land, x)
+}
 
+/// The diagnostics run on the reference's own bootstrap resamples.
+fn diagnostics_on_the_reference_resamples(
+    g: &Value,
+    model: &Arc<Model>,
+    land: &Landscape,
+    x: &Extraction,
+) -> DiagnosticsJob {
     let resamples: Vec<Vec<usize>> = g["resamples"]
         .as_array()
         .expect("resamples")
@@ -56,10 +67,13 @@ fn the_diagnostics_match_the_reference() {
         bootstrap: resamples.len(),
         seed: 0,
     };
-    let mut diag = DiagnosticsJob::with_resamples(model.clone(), &land, &x, settings, resamples);
+    let mut diag = DiagnosticsJob::with_resamples(model.clone(), land, x, settings, resamples);
     diag.run(&|_| {});
-    let d = diag.diagnostics();
+    diag
+}
 
+/// Depth, flatness, balanced k, k_ratio and the shares at the optimum.
+fn check_depth_balance_and_shares(g: &Value, d: &Diagnostics) {
     close(d.depth.expect("depth"), f(&g["depth"]), EXACT, "depth");
     assert_eq!(d.flat, f(&g["depth"]) < 0.02);
     close(
@@ -82,6 +96,10 @@ fn the_diagnostics_match_the_reference() {
             "share at J*",
         );
     }
+}
+
+/// The S minimum: its value exactly, its location to what a minimum defines.
+fn check_the_s_minimum(g: &Value, d: &Diagnostics) {
     let s_min = d.s_minimum.expect("S minimum");
     close(s_min.s, f(&g["s_minimum"]["s"]), EXACT, "S minimum: S");
     close(
@@ -96,7 +114,10 @@ fn the_diagnostics_match_the_reference() {
         LOCATION,
         "S minimum: K/M",
     );
+}
 
+/// Shares and k_ratio at the reference's gains, and depth at its J*.
+fn check_the_exact_functions(g: &Value, model: &Arc<Model>, land: &Landscape) {
     // Shares and k_ratio as exact functions of the gains.
     for p in g["points"].as_array().expect("points") {
         let (dm, km) = (f(&p["dm"]), f(&p["km"]));
@@ -109,12 +130,15 @@ fn the_diagnostics_match_the_reference() {
     }
     // Depth as a function of J* (the reference's own J*).
     close(
-        depth(&land, 20.0, f(&g["optimum"]["j"])).expect("depth"),
+        depth(land, 20.0, f(&g["optimum"]["j"])).expect("depth"),
         f(&g["depth"]),
         EXACT,
         "depth at the reference's J*",
     );
+}
 
+/// Each leave-one-out optimum.
+fn check_leave_one_out(g: &Value, d: &Diagnostics) {
     for (i, loo) in g["loo"].as_array().expect("loo").iter().enumerate() {
         let mine = d.demos[i].loo.expect("leave-one-out optimum");
         close(mine.j, f(&loo["j"]), EXACT, "LOO J");
@@ -122,6 +146,12 @@ fn the_diagnostics_match_the_reference() {
         close(mine.km, f(&loo["km"]), LOCATION, "LOO K/M");
         assert_eq!(Some(mine.on_edge), loo["on_edge"].as_bool(), "LOO edge {i}");
     }
+}
+
+/// Each bootstrap optimum, their percentiles and edge fraction, and the
+/// percentiles of the reference's own optima computed here.
+fn check_the_bootstrap(g: &Value, diag: &DiagnosticsJob) {
+    let d = diag.diagnostics();
     let optima = diag.bootstrap_optima();
     let expected = g["bootstrap"]["optima"].as_array().expect("optima");
     assert_eq!(optima.len(), expected.len());
@@ -146,4 +176,18 @@ fn the_diagnostics_match_the_reference() {
     {
         close(*a, e, EXACT, "percentiles as NumPy's");
     }
+}
+
+#[test]
+fn the_diagnostics_match_the_reference() {
+    let g = golden("expected_diagnostics.json");
+    let model = Arc::new(model());
+    let (land, x) = landscape_and_extraction(&g, &model);
+    let diag = diagnostics_on_the_reference_resamples(&g, &model, &land, &x);
+    let d = diag.diagnostics();
+    check_depth_balance_and_shares(&g, d);
+    check_the_s_minimum(&g, d);
+    check_the_exact_functions(&g, &model, &land);
+    check_leave_one_out(&g, d);
+    check_the_bootstrap(&g, &diag);
 }

@@ -132,7 +132,7 @@ fn tmp(name: &str) -> PathBuf {
     dir
 }
 
-fn load(path: &Path) -> dmpscope_core::load::source::SourceDemos {
+fn load(path: &Path) -> dmpscope_core::arrange::streams::SourceDemos {
     let name = path.display().to_string();
     load_source(&name, SourceData::Path(path), &LoadOptions::default()).expect("loads")
 }

@@ -8,32 +8,19 @@ mod common;
 
 use std::sync::Arc;
 
-use dmpscope_core::extract::diagnostics::{DiagSettings, DiagnosticsJob};
+use dmpscope_core::extract::diagnostics::{DiagSettings, Diagnostics, DiagnosticsJob};
 use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::landscape::grid::{FillOrder, Grid, LandscapeJob};
 use dmpscope_core::synth::planted_forcing::PlantedSpec;
 use dmpscope_core::{Extraction, Model, PrepSettings, RawDemo, Unusable, build_model, extract};
 
 /// The model, its extraction and the cheap diagnostics (no resampling).
-fn diagnose(
-    demos: &[RawDemo],
-) -> (
-    Arc<Model>,
-    Extraction,
-    dmpscope_core::extract::diagnostics::Diagnostics,
-) {
+fn diagnose(demos: &[RawDemo]) -> (Arc<Model>, Extraction, Diagnostics) {
     diagnose_with(demos, DmpSettings::default())
 }
 
 /// [`diagnose`] with other DMP settings (the axis SD floor).
-fn diagnose_with(
-    demos: &[RawDemo],
-    dmp: DmpSettings,
-) -> (
-    Arc<Model>,
-    Extraction,
-    dmpscope_core::extract::diagnostics::Diagnostics,
-) {
+fn diagnose_with(demos: &[RawDemo], dmp: DmpSettings) -> (Arc<Model>, Extraction, Diagnostics) {
     let built = build_model(demos, &PrepSettings::default(), dmp, Unusable::Fail).expect("model");
     let model = Arc::new(built.model);
     let mut job =

@@ -87,7 +87,7 @@ mod tests {
     use dmpscope_core::rl::env::EnvOptions;
 
     use super::*;
-    use crate::rl_request::RlRun;
+    use crate::rl_request::{RlRun, RunState};
 
     fn request(n: usize) -> RlRequest {
         RlRequest {
@@ -108,12 +108,11 @@ mod tests {
     fn update(decisions: usize, last: bool) -> RunUpdate {
         RunUpdate {
             decisions,
-            returns: vec![-(decisions as f64)],
-            greedy: None,
-            d: 0.0,
-            first_reach: None,
-            diverged: false,
-            seconds: 1.0,
+            state: RunState {
+                returns: vec![-(decisions as f64)],
+                seconds: 1.0,
+                ..RunState::default()
+            },
             report: None,
             stopped: None,
             last,

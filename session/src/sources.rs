@@ -9,7 +9,7 @@ use std::sync::{Arc, LazyLock};
 
 use dmpscope_core::arrange::streams::{Arrangement, Overrides, StreamInfo, arrange};
 use dmpscope_core::load::options::{LoadOptions, UpAxis};
-use dmpscope_core::load::source::{SourceData, SourceDemos, load_streams};
+use dmpscope_core::load::source::{SourceData, SourceStreams, load_streams};
 use dmpscope_core::{Level, Notice, RawDemo};
 
 use crate::jobs::{Once, Runner};
@@ -88,7 +88,7 @@ impl Source {
     }
 
     /// Loads the source's streams (the core's `load_streams`, as the CLI).
-    pub fn load(&self, options: &LoadOptions) -> Result<SourceDemos, String> {
+    pub fn load(&self, options: &LoadOptions) -> Result<SourceStreams, String> {
         let name = self.name();
         let data = match self {
             Self::Path(p) => SourceData::Path(p),
@@ -145,7 +145,7 @@ type Regrouping = (Arrangement, Overrides);
 /// A loaded source's streams and the options they were read with.
 struct Streams {
     key: StreamKey,
-    result: Result<SourceDemos, String>,
+    result: Result<SourceStreams, String>,
 }
 
 /// One opened recording.
@@ -154,7 +154,7 @@ pub struct SourceSlot {
     pub source: Source,
     streams: Option<Streams>,
     /// The load under way (its value is moved to `streams` when done).
-    load: Stage<StreamKey, Result<SourceDemos, String>>,
+    load: Stage<StreamKey, Result<SourceStreams, String>>,
     /// The demos of the streams for an arrangement, and those.
     grouped: Stage<Regrouping, Vec<RawDemo>>,
     /// Every stream and what became of it, for the arrangement.

@@ -35,100 +35,91 @@ fn delta(before: StageRuns, after: StageRuns) -> [usize; 8] {
     ]
 }
 
-#[test]
-fn each_setting_recomputes_exactly_its_stages() {
-    let mut settings = Settings::with_grid_points(8);
-    let mut session = session_on(vec![Source::sample()], &settings);
+/// Updates the session to `settings` and checks which stages ran, by name.
+fn check(session: &mut Session, settings: &Settings, expect: [usize; 8], what: &str) {
+    let before = session.runs();
+    session.update(settings);
+    assert_eq!(delta(before, session.runs()), expect, "{what}");
+    assert!(!session.busy(), "{what}: inline jobs finish in the update");
+}
+
+/// The sample's session on `settings`, checked ready with its ten demos.
+fn a_ready_sample_session(settings: &Settings) -> Session {
+    let session = session_on(vec![Source::sample()], settings);
     assert_eq!(session.status(), Status::Ready);
     assert!(session.extraction().is_some());
     assert_eq!(session.model().map(|m| m.demos().len()), Some(10));
+    session
+}
+
+/// The settings after the landscape: the operating point, k, the bootstrap, the limit.
+fn the_settings_after_the_landscape(session: &mut Session, settings: &mut Settings) {
     //                                  loads group model land  extr diag table point
-    let check = |session: &mut Session, settings: &Settings, expect: [usize; 8], what: &str| {
-        let before = session.runs();
-        session.update(settings);
-        assert_eq!(delta(before, session.runs()), expect, "{what}");
-        assert!(!session.busy(), "{what}: inline jobs finish in the update");
-    };
     check(
-        &mut session,
-        &settings,
+        session,
+        settings,
         [0, 0, 0, 0, 0, 0, 0, 0],
         "nothing changed",
     );
     settings.op = (12.0, 34.0);
     check(
-        &mut session,
-        &settings,
+        session,
+        settings,
         [0, 0, 0, 0, 0, 0, 0, 1],
         "the operating point",
     );
     settings.k = 5.0;
-    check(&mut session, &settings, [0, 0, 0, 0, 1, 1, 0, 0], "k");
+    check(session, settings, [0, 0, 0, 0, 1, 1, 0, 0], "k");
     settings.diagnostics.bootstrap = 12;
-    check(
-        &mut session,
-        &settings,
-        [0, 0, 0, 0, 0, 1, 0, 0],
-        "the bootstrap",
-    );
+    check(session, settings, [0, 0, 0, 0, 0, 1, 0, 0], "the bootstrap");
     settings.a_peak_limit = Some(50.0);
     check(
-        &mut session,
-        &settings,
+        session,
+        settings,
         [0, 0, 0, 0, 0, 0, 0, 0],
         "an a_peak limit",
     );
     assert!(session.constrained().is_some());
+}
+
+/// The landscape's grid and the model's settings: the grid, the SG window, the basis, a demo.
+fn the_grid_and_model_settings(session: &mut Session, settings: &mut Settings) {
+    //                                  loads group model land  extr diag table point
     settings.set_grid_points(9);
-    check(
-        &mut session,
-        &settings,
-        [0, 0, 0, 1, 1, 1, 0, 0],
-        "the grid",
-    );
+    check(session, settings, [0, 0, 0, 1, 1, 1, 0, 0], "the grid");
     settings.grid.km.hi = 2000.0;
-    check(
-        &mut session,
-        &settings,
-        [0, 0, 0, 1, 1, 1, 0, 0],
-        "the K/M range",
-    );
+    check(session, settings, [0, 0, 0, 1, 1, 1, 0, 0], "the K/M range");
     settings.prep.sg_window = 23;
-    check(
-        &mut session,
-        &settings,
-        [0, 0, 1, 1, 1, 1, 1, 1],
-        "the SG window",
-    );
+    check(session, settings, [0, 0, 1, 1, 1, 1, 1, 1], "the SG window");
     settings.dmp.basis_functions = 60;
-    check(
-        &mut session,
-        &settings,
-        [0, 0, 1, 1, 1, 1, 1, 1],
-        "the basis",
-    );
+    check(session, settings, [0, 0, 1, 1, 1, 1, 1, 1], "the basis");
     session.apply(Command::SetIncluded {
         demo: 3,
         included: false,
     });
     check(
-        &mut session,
-        &settings,
+        session,
+        settings,
         [0, 0, 1, 1, 1, 1, 1, 1],
         "an excluded demo",
     );
     assert_eq!(session.model().map(|m| m.demos().len()), Some(9));
+}
+
+/// The load settings: what a demo is, a break in time, the up axis, the frame filter.
+fn the_load_settings(session: &mut Session, settings: &mut Settings) {
+    //                                  loads group model land  extr diag table point
     settings.load.demos = Grouping::PerFile;
     check(
-        &mut session,
-        &settings,
+        session,
+        settings,
         [0, 1, 1, 1, 1, 1, 1, 1],
         "what a demo is",
     );
     settings.load.demos = Grouping::PerTopic;
     check(
-        &mut session,
-        &settings,
+        session,
+        settings,
         [0, 1, 1, 1, 1, 1, 1, 1],
         "back to topics",
     );
@@ -136,39 +127,48 @@ fn each_setting_recomputes_exactly_its_stages() {
     // regroups, and the same demos recompute nothing.
     settings.load.gaps = dmpscope_core::load::options::GapPolicy::Keep;
     check(
-        &mut session,
-        &settings,
+        session,
+        settings,
         [0, 1, 0, 0, 0, 0, 0, 0],
         "what a break in time does",
     );
     // The excluded demo stays excluded across the regrouping.
     assert_eq!(session.model().map(|m| m.demos().len()), Some(9));
     settings.load.up = UpAxis::YUp;
-    check(
-        &mut session,
-        &settings,
-        [1, 1, 1, 1, 1, 1, 1, 1],
-        "the up axis",
-    );
+    check(session, settings, [1, 1, 1, 1, 1, 1, 1, 1], "the up axis");
     // The sample has no TF frames: the filter reads the file again, but
     // the same demos recompute nothing after them.
     settings.load.frames = vec!["hand".into()];
     check(
-        &mut session,
-        &settings,
+        session,
+        settings,
         [1, 1, 0, 0, 0, 0, 0, 0],
         "the frame filter",
     );
+}
+
+/// A whole new settings value, then the same values again.
+fn a_whole_new_settings_value(session: &mut Session) {
     // Whatever set them: a whole new settings value (an imported file, a
     // reset) is compared the same way.
     let reset = Settings::with_grid_points(9);
-    check(&mut session, &reset, [1, 1, 1, 1, 1, 1, 1, 1], "a reset");
+    check(session, &reset, [1, 1, 1, 1, 1, 1, 1, 1], "a reset");
     check(
-        &mut session,
+        session,
         &reset.clone(),
         [0, 0, 0, 0, 0, 0, 0, 0],
         "the same values again",
     );
+}
+
+#[test]
+fn each_setting_recomputes_exactly_its_stages() {
+    let mut settings = Settings::with_grid_points(8);
+    let mut session = a_ready_sample_session(&settings);
+    the_settings_after_the_landscape(&mut session, &mut settings);
+    the_grid_and_model_settings(&mut session, &mut settings);
+    the_load_settings(&mut session, &mut settings);
+    a_whole_new_settings_value(&mut session);
 }
 
 #[test]

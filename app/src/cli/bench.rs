@@ -52,9 +52,48 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if args.vs_numpy {
         return vs_numpy(args.grid, args.repeat.clamp(1, 5));
     }
+    let (model, load_ms) = load_and_fit(&args.files)?;
+    let axis = Axis {
+        n: args.grid,
+        ..Axis::paper()
+    };
+    let grid = Grid { dm: axis, km: axis };
+    let [land_ms, plain_ms, baseline_ms] = landscape_times(&model, grid, args.repeat.max(1))?;
+    let (op_ms, rollout_ms) = operating_point_times(&model, args.points.max(1));
+    let threads = std::thread::available_parallelism().map_or(1, usize::from);
+    println!(
+        "demos: {}, grid: {1}x{1}, threads: {threads}",
+        model.demos().len(),
+        args.grid
+    );
+    println!("load + prepare + fit:                 {load_ms:8.2} ms");
+    print_landscape_times(
+        args.grid,
+        args.repeat.max(1),
+        &land_ms,
+        &plain_ms,
+        &baseline_ms,
+    );
+    print_operating_point_times(&op_ms, &rollout_ms);
+    generalise_figures(&model)?;
+    orientation_figures(&model, grid, args.repeat.max(1))?;
+    diagnostics_figures(&model, grid, args.repeat.max(1))?;
+    rl_figures(&model)?;
+    println!(
+        "elsewhere: the browser's figures (landscape <= 1.0 s, no frame gap > 100 ms while \
+         computing, first frame <= 1.5 s, wasm <= 3.5 MB gzipped) in web/tests/browser.mjs; the \
+         drag frame (<= 4 ms of app CPU) in tests/frame_time.sh; the NumPy ratio (>= 80x) with \
+         --vs-numpy"
+    );
+    Ok(())
+}
+
+/// Loads, prepares and fits the recordings with the defaults; the model and
+/// the time it took in ms.
+fn load_and_fit(files: &[PathBuf]) -> anyhow::Result<(std::sync::Arc<dmpscope_core::Model>, f64)> {
     let t0 = Instant::now();
     let mut raw = Vec::new();
-    for path in &args.files {
+    for path in files {
         let name = path.display().to_string();
         raw.extend(load_source(&name, SourceData::Path(path), &LoadOptions::default())?.demos);
     }
@@ -65,16 +104,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Unusable::Fail,
     )?;
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
-    let axis = Axis {
-        n: args.grid,
-        ..Axis::paper()
-    };
-    let grid = Grid { dm: axis, km: axis };
-    let [land_ms, plain_ms, baseline_ms] = landscape_times(&model, grid, args.repeat.max(1))?;
+    Ok((model, load_ms))
+}
+
+/// The operating point's times in ms at `n` points: the evaluation, and
+/// every demo's full path.
+fn operating_point_times(model: &dmpscope_core::Model, n: usize) -> (Vec<f64>, Vec<f64>) {
     // Operating points along a path across the default box, as a drag would visit.
     let mut op_ms = Vec::new();
     let mut rollout_ms = Vec::new();
-    let n = args.points.max(1);
     for i in 0..n {
         let u = i as f64 / n as f64;
         let (dm, km) = (10f64.powf(-1.0 + 4.0 * u), 10f64.powf(3.0 - 4.0 * u));
@@ -88,24 +126,29 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         rollout_ms.push(t.elapsed().as_secs_f64() * 1e3);
         std::hint::black_box(eval);
     }
-    let threads = std::thread::available_parallelism().map_or(1, usize::from);
-    println!(
-        "demos: {}, grid: {1}x{1}, threads: {threads}",
-        model.demos().len(),
-        args.grid
-    );
-    println!("load + prepare + fit:                 {load_ms:8.2} ms");
-    let lm = median(&land_ms);
-    let pm = median(&plain_ms);
+    (op_ms, rollout_ms)
+}
+
+/// Prints the landscape's medians, with E and without, and the kernels'
+/// instruction set (with the AVX2 baseline's time where it was measured).
+fn print_landscape_times(
+    n: usize,
+    repeat: usize,
+    land_ms: &[f64],
+    plain_ms: &[f64],
+    baseline_ms: &[f64],
+) {
+    let lm = median(land_ms);
+    let pm = median(plain_ms);
     println!(
         "landscape {0}x{0} with E (median of {1}): {lm:8.2} ms   (with E / without: {2:.2}, goal <= 2)",
-        args.grid,
-        args.repeat.max(1),
+        n,
+        repeat,
         lm / pm
     );
     println!(
         "landscape {0}x{0} without E (median):    {pm:8.2} ms   (position-only kernel, goal 150 ms: {1:.2}x)",
-        args.grid,
+        n,
         pm / 150.0
     );
     let isa = instruction_set();
@@ -114,28 +157,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         println!(
             "kernels: {isa}; without E on the AVX2 baseline (DMPSCOPE_SIMD=baseline): {:.2} ms, {:.2}x slower",
-            median(&baseline_ms),
-            median(&baseline_ms) / pm
+            median(baseline_ms),
+            median(baseline_ms) / pm
         );
     }
-    let om = median(&op_ms);
-    let rm = median(&rollout_ms);
+}
+
+/// Prints the operating point's medians: the evaluation and the full paths.
+fn print_operating_point_times(op_ms: &[f64], rollout_ms: &[f64]) {
+    let om = median(op_ms);
+    let rm = median(rollout_ms);
     println!(
         "operating point: d, a_peak, S (median): {om:8.3} ms   (goal 0.5 ms: {:.2}x)",
         om / 0.5
     );
     println!("operating point: full paths (median):  {rm:8.3} ms");
-    generalise_figures(&model)?;
-    orientation_figures(&model, grid, args.repeat.max(1))?;
-    diagnostics_figures(&model, grid, args.repeat.max(1))?;
-    rl_figures(&model)?;
-    println!(
-        "elsewhere: the browser's figures (landscape <= 1.0 s, no frame gap > 100 ms while \
-         computing, first frame <= 1.5 s, wasm <= 3.5 MB gzipped) in web/tests/browser.mjs; the \
-         drag frame (<= 4 ms of app CPU) in tests/frame_time.sh; the NumPy ratio (>= 80x) with \
-         --vs-numpy"
-    );
-    Ok(())
 }
 
 /// The landscape's wall times in ms: with E, without E, and without E on

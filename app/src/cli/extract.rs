@@ -4,11 +4,12 @@
 
 use std::sync::Arc;
 
-use dmpscope_core::Report;
 use dmpscope_core::extract::allowed::{Allowed, DEFAULT_EPS, PickRule, PickSettings};
 use dmpscope_core::extract::diagnostics::{DiagSettings, DiagnosticsJob};
+use dmpscope_core::landscape::grid::Landscape;
 use dmpscope_core::report::summary::{Constrained, LoadingChoices};
 use dmpscope_core::report::table::TableRow;
+use dmpscope_core::{Extraction, Model, Report};
 
 use super::inputs::InputArgs;
 use super::landscape::{GridArgs, landscape_and_optimum};
@@ -79,23 +80,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         &args.input.prep(),
     ));
     if !args.no_diagnostics {
-        let settings = DiagSettings {
-            grid_points: args.diag_grid,
-            bootstrap: args.bootstrap,
-            seed: args.bootstrap_seed,
-        };
-        let mut job = DiagnosticsJob::new(Arc::clone(&model), &land, &optimum, settings);
-        let bar = progress_bar(job.progress().1 as u64, "diagnostics");
-        job.run(&|done| bar.set_position(done as u64));
-        bar.finish_and_clear();
-        if job.diagnostics().flat {
-            eprintln!(
-                "note: J is flat (depth below {}): J alone does not determine the gains; the \
-                 output says what the data allow and which gains are picked in it",
-                dmpscope_core::extract::diagnostics::balance::FLAT_DEPTH
-            );
-        }
-        report = report.with_diagnostics(job.diagnostics().clone(), job.about().clone());
+        report = add_the_diagnostics(&args, report, &model, &land, &optimum);
     }
     if let Some(limit) = args.a_peak_limit {
         if !(limit.is_finite() && limit > 0.0) {
@@ -103,10 +88,56 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         report.constrained = Some(Constrained::compute(&model, &land, args.grid.k, limit));
     }
+    add_the_allowed(&args, &mut report, &model, &land, &optimum);
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+        return Ok(());
+    }
+    print_the_report(&report, optimum.j);
+    Ok(())
+}
+
+/// Runs the diagnostics (with a progress bar, and a note when J is flat)
+/// and adds them to the report.
+fn add_the_diagnostics(
+    args: &Args,
+    report: Report,
+    model: &Arc<Model>,
+    land: &Landscape,
+    optimum: &Extraction,
+) -> Report {
+    let settings = DiagSettings {
+        grid_points: args.diag_grid,
+        bootstrap: args.bootstrap,
+        seed: args.bootstrap_seed,
+    };
+    let mut job = DiagnosticsJob::new(Arc::clone(model), land, optimum, settings);
+    let bar = progress_bar(job.progress().1 as u64, "diagnostics");
+    job.run(&|done| bar.set_position(done as u64));
+    bar.finish_and_clear();
+    if job.diagnostics().flat {
+        eprintln!(
+            "note: J is flat (depth below {}): J alone does not determine the gains; the \
+             output says what the data allow and which gains are picked in it",
+            dmpscope_core::extract::diagnostics::balance::FLAT_DEPTH
+        );
+    }
+    report.with_diagnostics(job.diagnostics().clone(), job.about().clone())
+}
+
+/// Adds what the data allow and the gains picked in it (a row of Table I),
+/// warning of a missing skill error or a failed pick.
+fn add_the_allowed(
+    args: &Args,
+    report: &mut Report,
+    model: &Model,
+    land: &Landscape,
+    optimum: &Extraction,
+) {
     let allowed = Allowed::new(
-        &model,
-        &land,
-        &optimum,
+        model,
+        land,
+        optimum,
         PickSettings {
             rule: args.pick,
             eps: args.accept_eps,
@@ -127,10 +158,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .insert(1, TableRow::from_eval(name, &eval, args.grid.k));
     }
     report.allowed = Some(allowed);
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
-        return Ok(());
-    }
+}
+
+/// Prints the report as text: the optimum (after what the data allow when J
+/// is flat), the constrained optimum, the diagnostics and Table I.
+fn print_the_report(report: &Report, optimum_j: f64) {
     // A flat J leads with what the data allow and the pick (never a dead
     // end); a determined one with its optimum.
     let flat = report.allowed.as_ref().is_some_and(|a| a.j_flat);
@@ -140,7 +172,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     print!("{}", report.optimum_text());
     if let Some(c) = &report.constrained {
-        print!("{}", c.text(Some(optimum.j)));
+        print!("{}", c.text(Some(optimum_j)));
     }
     if let Some(a) = &report.allowed {
         println!("for the robot: {}", a.optimum_robot.text());
@@ -156,5 +188,4 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         println!();
     }
     print!("{}", report.table_text());
-    Ok(())
 }

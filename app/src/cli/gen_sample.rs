@@ -8,7 +8,7 @@ use anyhow::Context;
 use dmpscope_core::export::write::{BulkTopic, TopicSamples, write_pose_stamped_with_bulk};
 use dmpscope_core::synth::planted::planted_demos;
 use dmpscope_core::synth::planted_forcing::PlantedSpec;
-use dmpscope_core::synth::vive::reach_demos;
+use dmpscope_core::synth::vive::{SynthDemo, reach_demos};
 
 /// Arguments of `gen-sample`.
 #[derive(Debug, clap::Args)]
@@ -61,7 +61,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if args.demos == 0 || args.demos > 99 {
         anyhow::bail!("--demos must be 1 to 99, got {}", args.demos);
     }
-    let demos = match args.planted.as_deref() {
+    let demos = the_demos(&args)?;
+    let topics: Vec<String> = (1..=demos.len()).map(|i| format!("/demo_{i:02}")).collect();
+    write_the_demos(&args, &demos, &topics)?;
+    print_what_was_written(&args, &demos, &topics);
+    Ok(())
+}
+
+/// The demos: planted at the given gains (checked, with the noise), else
+/// human-like reaches.
+fn the_demos(args: &Args) -> anyhow::Result<Vec<SynthDemo>> {
+    Ok(match args.planted.as_deref() {
         Some(&[dm, km]) => {
             let valid = |v: f64| v.is_finite() && v > 0.0;
             if !(valid(dm) && valid(km)) {
@@ -85,11 +95,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         Some(other) => anyhow::bail!("--planted takes two gains, got {other:?}"),
         None => reach_demos(args.seed, args.demos, EPOCH_NS),
-    };
-    let topics: Vec<String> = (1..=demos.len()).map(|i| format!("/demo_{i:02}")).collect();
+    })
+}
+
+/// Writes each demo on its topic (with the camera frames asked for) to `--out`.
+fn write_the_demos(args: &Args, demos: &[SynthDemo], topics: &[String]) -> anyhow::Result<()> {
     let samples: Vec<TopicSamples<'_>> = demos
         .iter()
-        .zip(&topics)
+        .zip(topics)
         .map(|(d, t)| TopicSamples {
             orientations: d.orientations.as_deref(),
             topic: t,
@@ -111,9 +124,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         bulk,
     )
     .with_context(|| format!("{}: cannot write MCAP", args.out.display()))?;
+    Ok(())
+}
+
+/// Says what was written: the planted gains and noise, or which reaches
+/// hesitate and correct.
+fn print_what_was_written(args: &Args, demos: &[SynthDemo], topics: &[String]) {
     let corrected: Vec<&str> = demos
         .iter()
-        .zip(&topics)
+        .zip(topics)
         .filter(|(d, _)| d.corrected)
         .map(|(_, t)| t.as_str())
         .collect();
@@ -126,7 +145,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             args.noise_mm,
             args.out.display()
         );
-        return Ok(());
+        return;
     }
     eprintln!(
         "wrote {} demos to {} (hesitation and correction in: {})",
@@ -138,5 +157,4 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             corrected.join(", ")
         }
     );
-    Ok(())
 }

@@ -18,7 +18,7 @@ use dmpscope_core::load::options::{LoadOptions, UpAxis};
 use dmpscope_core::load::options::{SegmentPick, SegmentSettings};
 use dmpscope_core::load::source::{SourceData, load_streams};
 use dmpscope_core::load::units::Units;
-use dmpscope_core::{Model, PrepSettings, RawDemo, Unusable, build_model};
+use dmpscope_core::{Model, Notice, PrepSettings, RawDemo, Unusable, build_model};
 
 use super::output::print_notices;
 
@@ -189,12 +189,16 @@ impl LoadArgs {
 
     /// The streams of every file, before grouping (`info --segment`).
     pub fn load_streams(&self) -> anyhow::Result<Vec<RawDemo>> {
-        self.load_with(load_streams)
+        self.load_with(|name, data, options| {
+            load_streams(name, data, options).map(|l| (l.demos, l.notices))
+        })
     }
 
     /// The demonstrations, grouped as asked, their names unique.
     pub fn load_demos(&self) -> anyhow::Result<Vec<RawDemo>> {
-        let mut demos = self.load_with(load_source)?;
+        let mut demos = self.load_with(|name, data, options| {
+            load_source(name, data, options).map(|l| (l.demos, l.notices))
+        })?;
         if demos.is_empty() {
             anyhow::bail!(
                 "no demonstration found: every stream was skipped (see the notes above), or \
@@ -207,15 +211,15 @@ impl LoadArgs {
 
     fn load_with(
         &self,
-        load: fn(
+        load: impl Fn(
             &str,
             SourceData<'_>,
             &LoadOptions,
-        ) -> dmpscope_core::Result<dmpscope_core::load::source::SourceDemos>,
+        ) -> dmpscope_core::Result<(Vec<RawDemo>, Vec<Notice>)>,
     ) -> anyhow::Result<Vec<RawDemo>> {
         let options = self.options();
         if self.segments != SegmentPick::All && self.demos != DemosBy::Segment {
-            print_notices(&[dmpscope_core::notice::Notice::warning(format!(
+            print_notices(&[Notice::warning(format!(
                 "--segments {} applies only with --demos segment: every demo is kept",
                 self.segments.name()
             ))]);
@@ -223,9 +227,9 @@ impl LoadArgs {
         let mut demos = Vec::new();
         for path in &self.files {
             let name = path.display().to_string();
-            let loaded = load(&name, SourceData::Path(path), &options)?;
-            print_notices(&loaded.notices);
-            demos.extend(loaded.demos);
+            let (loaded, notices) = load(&name, SourceData::Path(path), &options)?;
+            print_notices(&notices);
+            demos.extend(loaded);
         }
         Ok(demos)
     }

@@ -119,14 +119,18 @@ fn quaternion(what: &str, v: &Option<Vec<f64>>) -> anyhow::Result<Option<[f64; 4
     Ok(Some(q.map(|c| c / norm)))
 }
 
-/// Prints per path d_mean, a_peak, peak speed and final error, and writes
-/// the paths.
-pub fn run(args: Args) -> anyhow::Result<()> {
+/// Checks the gains are positive numbers.
+fn check_the_gains(args: &Args) -> anyhow::Result<()> {
     for (name, v) in [("--dm", args.dm), ("--km", args.km)] {
         if !(v.is_finite() && v > 0.0) {
             anyhow::bail!("{name} must be a positive number, got {v}");
         }
     }
+    Ok(())
+}
+
+/// The new start, goal, duration, scaling and orientations; the duration checked.
+fn the_target(args: &Args) -> anyhow::Result<Target> {
     let scaling = match args.scaling {
         ScalingArg::Paper => Scaling::Paper,
         ScalingArg::Frame => Scaling::Frame,
@@ -144,6 +148,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     {
         anyhow::bail!("--duration must be a positive number of seconds, got {d}");
     }
+    Ok(target)
+}
+
+/// The output's extension in lower case; a `.json` one needs one DMP chosen.
+fn the_extension(args: &Args) -> anyhow::Result<Option<String>> {
     let extension = args
         .out
         .as_deref()
@@ -155,6 +164,64 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             "a .json export holds one DMP: pass --demo N (1-based) or --skill to choose it"
         );
     }
+    Ok(extension)
+}
+
+/// Prints the runs' warnings, then the summary (on stderr when the paths go to stdout).
+fn print_the_summary(model: &Model, args: &Args, runs: &[Run]) {
+    for r in runs {
+        for w in &r.out.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    let summary = summary(model, args, runs);
+    let to_stdout = args.out.as_deref().is_some_and(|p| p == Path::new("-"));
+    if to_stdout {
+        eprint!("{summary}");
+    } else {
+        print!("{summary}");
+    }
+}
+
+/// Writes one run as the DMP export of `docs/export.md`.
+fn write_json(
+    out: &Path,
+    model: &Model,
+    args: &Args,
+    r: &Run,
+    frame_id: String,
+    scaling: Scaling,
+) -> anyhow::Result<()> {
+    let doc = dmp_document(
+        &r.primitive,
+        &r.out,
+        DocContext {
+            demos: match &r.skill {
+                Some(s) => s.demos.clone(),
+                None => vec![r.primitive.name.clone()],
+            },
+            source: if r.skill.is_some() { "skill" } else { "demo" },
+            basis: (&model.basis().centres, &model.basis().widths),
+            frame_id,
+            band: r.skill.as_ref().map(|_| r.out.band.clone()),
+            scaling,
+            recorded_units: args.input.load.options().units,
+        },
+    )
+    .with_context(|| format!("{}: not written", out.display()))?;
+    let mut text = serde_json::to_string(&doc)?;
+    text.push('\n');
+    write_text(Some(out), &text)?;
+    eprintln!("wrote the DMP of {} to {}", r.primitive.name, out.display());
+    Ok(())
+}
+
+/// Prints per path d_mean, a_peak, peak speed and final error, and writes
+/// the paths.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    check_the_gains(&args)?;
+    let target = the_target(&args)?;
+    let extension = the_extension(&args)?;
     let (raw, model) = load_model(&args.input)?;
     let n = model.demos().len();
     if let Some(d) = args.demo
@@ -163,18 +230,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         anyhow::bail!("--demo must be between 1 and {n}, got {d}");
     }
     let runs = make_runs(&model, &args, &target)?;
-    for r in &runs {
-        for w in &r.out.warnings {
-            eprintln!("warning: {w}");
-        }
-    }
-    let summary = summary(&model, &args, &runs);
-    let to_stdout = args.out.as_deref().is_some_and(|p| p == Path::new("-"));
-    if to_stdout {
-        eprint!("{summary}");
-    } else {
-        print!("{summary}");
-    }
+    print_the_summary(&model, &args, &runs);
     let Some(out) = args.out.as_deref() else {
         eprintln!("note: pass --out F.csv, F.mcap or F.json to write the paths");
         return Ok(());
@@ -187,31 +243,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .unwrap_or_else(|| "world".to_owned());
     match extension.as_deref() {
         Some("mcap") => write_mcap(out, &raw, &model, &args, &runs, &frame_id),
-        Some("json") => {
-            let r = &runs[0];
-            let doc = dmp_document(
-                &r.primitive,
-                &r.out,
-                DocContext {
-                    demos: match &r.skill {
-                        Some(s) => s.demos.clone(),
-                        None => vec![r.primitive.name.clone()],
-                    },
-                    source: if r.skill.is_some() { "skill" } else { "demo" },
-                    basis: (&model.basis().centres, &model.basis().widths),
-                    frame_id,
-                    band: r.skill.as_ref().map(|_| r.out.band.clone()),
-                    scaling,
-                    recorded_units: args.input.load.options().units,
-                },
-            )
-            .with_context(|| format!("{}: not written", out.display()))?;
-            let mut text = serde_json::to_string(&doc)?;
-            text.push('\n');
-            write_text(Some(out), &text)?;
-            eprintln!("wrote the DMP of {} to {}", r.primitive.name, out.display());
-            Ok(())
-        }
+        Some("json") => write_json(out, &model, &args, &runs[0], frame_id, target.scaling),
         _ => write_text(Some(out), &csv(&model, &runs, own_target(&args))),
     }
 }
@@ -391,64 +423,8 @@ fn write_mcap(
     runs: &[Run],
     frame_id: &str,
 ) -> anyhow::Result<()> {
-    let first_stamp = |i: usize| {
-        raw.get(i)
-            .and_then(|r| r.stamps_ns.iter().min().copied())
-            .unwrap_or(0)
-    };
-    let firsts: Vec<i64> = (0..model.demos().len()).map(first_stamp).collect();
-    let mut names = TopicNames::default();
-    let (mut paths, shorts) = demo_paths(model, &firsts, &mut names);
-    let mut trajectories = Vec::new();
-    for r in runs {
-        let start = first_stamp(r.demo.unwrap_or(0));
-        let short = match r.demo {
-            Some(i) => shorts[i].clone(),
-            None => names.unique(&r.primitive.name),
-        };
-        paths.push(ExportPath {
-            topic: format!("/regen/{short}"),
-            name: r.primitive.name.clone(),
-            role: ROLE_REGENERATED,
-            samples: r
-                .out
-                .t
-                .iter()
-                .zip(&r.out.unit.y)
-                .map(|(t, p)| (start + (t * 1e9).round() as i64, (*p).into()))
-                .collect(),
-        });
-        trajectories.push(TrajectoryExport {
-            prefix: format!("/dmp/{short}"),
-            name: r.primitive.name.clone(),
-            path: TimedPath {
-                frame_id: frame_id.to_owned(),
-                joint: "end_effector".to_owned(),
-                stamp_ns: start,
-                t: r.out.t.clone(),
-                y: arrays(&r.out.unit.y),
-                v: arrays(&r.out.v),
-                a: arrays(&r.out.a),
-                orientation: timed_orientation(&r.out),
-            },
-        });
-    }
-    let eval = model.evaluate(args.dm, args.km);
-    let mut metadata: BTreeMap<String, String> = [
-        ("dm", args.dm.to_string()),
-        ("km", args.km.to_string()),
-        ("zeta", eval.zeta.to_string()),
-        ("s", eval.s.to_string()),
-        ("d_sum", eval.d_sum.to_string()),
-        ("demos", model.demos().len().to_string()),
-        ("scaling", args.scaling_name().to_owned()),
-    ]
-    .into_iter()
-    .map(|(k, v)| (k.to_owned(), v))
-    .collect();
-    if let Some(d) = args.duration {
-        metadata.insert("duration_s".into(), d.to_string());
-    }
+    let (paths, trajectories) = paths_and_trajectories(raw, model, runs, frame_id);
+    let metadata = gains_metadata(model, args);
     let file =
         std::fs::File::create(out).with_context(|| format!("{}: cannot create", out.display()))?;
     write_export_mcap(
@@ -466,6 +442,90 @@ fn write_mcap(
         out.display()
     );
     Ok(())
+}
+
+/// The demos' paths then each run's, and each run's ROS trajectory, stamped
+/// from its demo's first stamp.
+fn paths_and_trajectories(
+    raw: &[RawDemo],
+    model: &Model,
+    runs: &[Run],
+    frame_id: &str,
+) -> (Vec<ExportPath>, Vec<TrajectoryExport>) {
+    let first_stamp = |i: usize| {
+        raw.get(i)
+            .and_then(|r| r.stamps_ns.iter().min().copied())
+            .unwrap_or(0)
+    };
+    let firsts: Vec<i64> = (0..model.demos().len()).map(first_stamp).collect();
+    let mut names = TopicNames::default();
+    let (mut paths, shorts) = demo_paths(model, &firsts, &mut names);
+    let mut trajectories = Vec::new();
+    for r in runs {
+        let start = first_stamp(r.demo.unwrap_or(0));
+        let short = match r.demo {
+            Some(i) => shorts[i].clone(),
+            None => names.unique(&r.primitive.name),
+        };
+        paths.push(regenerated_path(r, &short, start));
+        trajectories.push(ros_trajectory(r, &short, start, frame_id));
+    }
+    (paths, trajectories)
+}
+
+/// A run's path as poses on `/regen/<short>`, from `start` (ns).
+fn regenerated_path(r: &Run, short: &str, start: i64) -> ExportPath {
+    ExportPath {
+        topic: format!("/regen/{short}"),
+        name: r.primitive.name.clone(),
+        role: ROLE_REGENERATED,
+        samples: r
+            .out
+            .t
+            .iter()
+            .zip(&r.out.unit.y)
+            .map(|(t, p)| (start + (t * 1e9).round() as i64, (*p).into()))
+            .collect(),
+    }
+}
+
+/// A run as ROS 2 trajectories under `/dmp/<short>`, from `start` (ns).
+fn ros_trajectory(r: &Run, short: &str, start: i64, frame_id: &str) -> TrajectoryExport {
+    TrajectoryExport {
+        prefix: format!("/dmp/{short}"),
+        name: r.primitive.name.clone(),
+        path: TimedPath {
+            frame_id: frame_id.to_owned(),
+            joint: "end_effector".to_owned(),
+            stamp_ns: start,
+            t: r.out.t.clone(),
+            y: arrays(&r.out.unit.y),
+            v: arrays(&r.out.v),
+            a: arrays(&r.out.a),
+            orientation: timed_orientation(&r.out),
+        },
+    }
+}
+
+/// The MCAP's metadata: the gains, their figures, the demos, the scaling, the duration.
+fn gains_metadata(model: &Model, args: &Args) -> BTreeMap<String, String> {
+    let eval = model.evaluate(args.dm, args.km);
+    let mut metadata: BTreeMap<String, String> = [
+        ("dm", args.dm.to_string()),
+        ("km", args.km.to_string()),
+        ("zeta", eval.zeta.to_string()),
+        ("s", eval.s.to_string()),
+        ("d_sum", eval.d_sum.to_string()),
+        ("demos", model.demos().len().to_string()),
+        ("scaling", args.scaling_name().to_owned()),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_owned(), v))
+    .collect();
+    if let Some(d) = args.duration {
+        metadata.insert("duration_s".into(), d.to_string());
+    }
+    metadata
 }
 
 /// A generalised run's orientation in real time (unit-time rates over the

@@ -4,7 +4,7 @@
 //! runs share the machine's cores, `--jobs`).
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
@@ -191,32 +191,25 @@ fn gain_sets(
     Ok(sets)
 }
 
-/// Trains and prints the outcome (or the comparison table).
-pub fn run(args: Args) -> anyhow::Result<()> {
-    let n_seeds = args.seeds.unwrap_or(if args.compare { 3 } else { 1 });
-    if args.steps == 0 || n_seeds == 0 || args.jobs == Some(0) {
-        anyhow::bail!("--steps, --seeds and --jobs must be at least 1");
-    }
+/// The model, and the landscape's optimum `(D/M, K/M)` where it was needed.
+type ModelAndOptimum = (Arc<Model>, Option<(f64, f64)>);
+
+/// Loads the model, and the landscape's optimum when the gains need it.
+fn model_and_extracted(args: &Args) -> anyhow::Result<ModelAndOptimum> {
     let input = &args.input;
     let needs_landscape = args.extracted || args.compare;
-    let (model, extracted): (Arc<Model>, Option<(f64, f64)>) = if needs_landscape {
+    Ok(if needs_landscape {
         let (_, model, _, x) = landscape_and_optimum(input, &args.grid)?;
         (model, Some((x.eval.dm, x.eval.km)))
     } else {
         (load_model(input)?.1, None)
-    };
-    let n = model.demos().len();
-    if args.demo == 0 || args.demo > n {
-        anyhow::bail!("--demo must be between 1 and {n}, got {}", args.demo);
-    }
-    let demo = args.demo - 1;
-    let options = EnvOptions {
-        decisions: args.decisions,
-        mode: args.mode.into(),
-        explore: args.explore.into(),
-    };
+    })
+}
+
+/// One run per gain set and seed, in the order of the table.
+fn the_jobs(args: &Args, extracted: Option<(f64, f64)>, n_seeds: u64) -> anyhow::Result<Vec<Job>> {
     let seeds: Vec<u64> = (0..n_seeds).map(|i| args.seed + i).collect();
-    let jobs: Vec<Job> = gain_sets(&args, extracted)?
+    let jobs: Vec<Job> = gain_sets(args, extracted)?
         .into_iter()
         .flat_map(|(name, dm, km)| {
             seeds.iter().map(move |&seed| Job {
@@ -226,11 +219,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             })
         })
         .collect();
-    let workers = args
-        .jobs
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, usize::from))
-        .min(jobs.len());
-    let bar = progress_bar((args.steps * jobs.len()) as u64, "PPO");
+    Ok(jobs)
+}
+
+/// Trains the jobs on `workers` threads; their figures in job order, and the last run.
+fn train_all(
+    model: &Model,
+    demo: usize,
+    jobs: &[Job],
+    options: EnvOptions,
+    steps: usize,
+    workers: usize,
+) -> anyhow::Result<(Vec<RunReport>, Option<TrainingRun>)> {
+    let bar = progress_bar((steps * jobs.len()) as u64, "PPO");
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Trained>>> = Mutex::new((0..jobs.len()).map(|_| None).collect());
     std::thread::scope(|scope| {
@@ -239,7 +240,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 loop {
                     let i = next.fetch_add(1, Ordering::Relaxed);
                     let Some(job) = jobs.get(i) else { break };
-                    let r = train(&model, demo, job, options, args.steps, &bar);
+                    let r = train(model, demo, job, options, steps, &bar);
                     if let Ok(mut all) = results.lock() {
                         all[i] = Some(r);
                     }
@@ -258,45 +259,87 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         outcomes.push(o);
         last_run = Some(run);
     }
+    Ok((outcomes, last_run))
+}
+
+/// Prints what was trained and the outcome table.
+fn print_the_outcomes(args: &Args, demo_name: &str, workers: usize, outcomes: &[RunReport]) {
     let mut text = String::new();
     let _ = writeln!(
         text,
         "RL with DMP on {} ({} decisions of training per run, {} decisions per episode, action: {}, exploration: {}, {} run(s) at once)",
-        model.demos()[demo].name,
+        demo_name,
         args.steps,
         args.decisions,
         ActionMode::from(args.mode).name(),
         ExploreScale::from(args.explore).name(),
         workers
     );
-    text.push_str(&table(&outcomes));
+    text.push_str(&table(outcomes));
     print!("{text}");
+}
+
+/// Writes the outcomes as JSON to `out`: the one run, or every run under `runs`.
+fn write_the_outcomes(out: &Path, outcomes: &[RunReport]) -> anyhow::Result<()> {
+    let value = if outcomes.len() == 1 {
+        run_json(&outcomes[0])
+    } else {
+        json!({ "runs": outcomes.iter().map(run_json).collect::<Vec<_>>() })
+    };
+    write_text(Some(out), &serde_json::to_string_pretty(&value)?)
+}
+
+/// Writes the run's trained policy, with the environment's scales, as JSON to `path`.
+fn save_the_policy(path: &Path, demo_name: &str, run: &TrainingRun) -> anyhow::Result<()> {
+    let env = run.trainer().task();
+    let value = json!({
+        "format": "dmpscope.policy",
+        "version": 1,
+        "demo": demo_name,
+        "dm": env.dm, "km": env.km,
+        "mode": env.mode().name(),
+        "decisions_per_episode": dmpscope_core::rl::task::Task::decisions(env),
+        "integration_steps_per_decision": env.hold(),
+        "start": env.start(), "goal": env.goal(),
+        "action_scale": env.action_scale(),
+        "observation_scale_m": env.observation_scale(),
+        "observation": "phase s, then (y - g) / r per axis, then y' / r per axis (unit time); normalised by obs_norm, clipped to +-10",
+        "action": "u = actor(normalised observation); forcing term A = action_scale * u (+ the fitted forcing term in residual mode)",
+        "policy": run.trainer().policy(),
+    });
+    write_text(Some(path), &serde_json::to_string_pretty(&value)?)
+}
+
+/// Trains and prints the outcome (or the comparison table).
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let n_seeds = args.seeds.unwrap_or(if args.compare { 3 } else { 1 });
+    if args.steps == 0 || n_seeds == 0 || args.jobs == Some(0) {
+        anyhow::bail!("--steps, --seeds and --jobs must be at least 1");
+    }
+    let (model, extracted) = model_and_extracted(&args)?;
+    let n = model.demos().len();
+    if args.demo == 0 || args.demo > n {
+        anyhow::bail!("--demo must be between 1 and {n}, got {}", args.demo);
+    }
+    let demo = args.demo - 1;
+    let options = EnvOptions {
+        decisions: args.decisions,
+        mode: args.mode.into(),
+        explore: args.explore.into(),
+    };
+    let jobs = the_jobs(&args, extracted, n_seeds)?;
+    let workers = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, usize::from))
+        .min(jobs.len());
+    let (outcomes, last_run) = train_all(&model, demo, &jobs, options, args.steps, workers)?;
+    let demo_name = &model.demos()[demo].name;
+    print_the_outcomes(&args, demo_name, workers, &outcomes);
     if let Some(out) = &args.out {
-        let value = if outcomes.len() == 1 {
-            run_json(&outcomes[0])
-        } else {
-            json!({ "runs": outcomes.iter().map(run_json).collect::<Vec<_>>() })
-        };
-        write_text(Some(out), &serde_json::to_string_pretty(&value)?)?;
+        write_the_outcomes(out, &outcomes)?;
     }
     if let (Some(path), Some(run)) = (&args.save_policy, &last_run) {
-        let env = run.trainer().task();
-        let value = json!({
-            "format": "dmpscope.policy",
-            "version": 1,
-            "demo": model.demos()[demo].name,
-            "dm": env.dm, "km": env.km,
-            "mode": env.mode().name(),
-            "decisions_per_episode": dmpscope_core::rl::task::Task::decisions(env),
-            "integration_steps_per_decision": env.hold(),
-            "start": env.start(), "goal": env.goal(),
-            "action_scale": env.action_scale(),
-            "observation_scale_m": env.observation_scale(),
-            "observation": "phase s, then (y - g) / r per axis, then y' / r per axis (unit time); normalised by obs_norm, clipped to +-10",
-            "action": "u = actor(normalised observation); forcing term A = action_scale * u (+ the fitted forcing term in residual mode)",
-            "policy": run.trainer().policy(),
-        });
-        write_text(Some(path), &serde_json::to_string_pretty(&value)?)?;
+        save_the_policy(path, demo_name, run)?;
     }
     Ok(())
 }

@@ -4,10 +4,10 @@
 //! axis; a skill's ±1 SD band around its position; the source at its own
 //! target dashed for comparison.
 
-use dmpscope_core::Rollout;
 use dmpscope_core::geom::Vec3 as Point;
+use dmpscope_core::{Generalised, Rollout};
 use eframe::egui::{self, Color32};
-use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, VLine};
+use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, PlotUi, VLine};
 
 use crate::session::GenView;
 
@@ -52,7 +52,6 @@ fn series(
 /// unit time under the pointer while it is over a plot.
 pub fn show(ui: &mut egui::Ui, g: &GenView, own: Option<OwnRun<'_>>, t: f64) -> Option<f64> {
     let o = &g.out;
-    let n = o.t.len();
     let tau = o.duration_s;
     let height = ((ui.available_height() - 12.0) / 3.0).max(60.0);
     let group = ui.scope_id().with("generalised plots");
@@ -78,56 +77,13 @@ pub fn show(ui: &mut egui::Ui, g: &GenView, own: Option<OwnRun<'_>>, t: f64) -> 
                         .width(1.0),
                 );
                 for (ax, (name, colour)) in AXES.iter().enumerate() {
-                    let at = |k: usize| o.t[k];
-                    let values = match row {
-                        0 => &o.unit.y,
-                        1 => &o.v,
-                        _ => &o.a,
-                    };
                     let from = if row == 0 { o.start[ax] } else { 0.0 };
-                    plot.line(
-                        Line::new(format!("new {name}"), series(values, ax, at, |v| v - from))
-                            .color(*colour)
-                            .width(2.0),
-                    );
+                    new_run_line(plot, o, row, ax, name, *colour, from);
                     if row == 0 {
-                        plot.hline(
-                            HLine::new("", o.goal[ax] - from)
-                                .color(colour.gamma_multiply(0.6))
-                                .style(LineStyle::dotted_dense()),
-                        );
-                        if o.band.len() == n {
-                            for sign in [-1.0, 1.0] {
-                                let points: PlotPoints<'static> = (0..n)
-                                    .step_by(n.div_ceil(MAX_POINTS).max(1))
-                                    .map(|k| {
-                                        [o.t[k], o.unit.y[k][ax] - from + sign * o.band[k][ax]]
-                                    })
-                                    .collect();
-                                plot.line(
-                                    Line::new("", points)
-                                        .color(colour.gamma_multiply(0.45))
-                                        .width(1.0),
-                                );
-                            }
-                        }
+                        goal_and_band(plot, o, ax, *colour, from);
                     }
                     if let Some(own) = &own {
-                        let m = own.rollout.y.len();
-                        let own_t = |k: usize| own.duration_s * k as f64 / (m.max(2) - 1) as f64;
-                        let (values, scale, shift) = match row {
-                            0 => (&own.rollout.y, 1.0, 0.0),
-                            1 => (&own.rollout.v, 1.0 / own.duration_s, 0.0),
-                            _ => (&own.rollout.a, 1.0 / (own.duration_s * own.duration_s), 0.0),
-                        };
-                        plot.line(
-                            Line::new(
-                                format!("own {name}"),
-                                series(values, ax, own_t, |v| v * scale + shift),
-                            )
-                            .color(colour.gamma_multiply(0.7))
-                            .style(LineStyle::dashed_loose()),
-                        );
+                        own_run_line(plot, own, row, ax, name, *colour);
                     }
                 }
                 plot.pointer_coordinate()
@@ -139,4 +95,79 @@ pub fn show(ui: &mut egui::Ui, g: &GenView, own: Option<OwnRun<'_>>, t: f64) -> 
         }
     }
     hovered
+}
+
+/// The new run's line for axis `ax` on plot `row` (position, velocity,
+/// acceleration), less `from`.
+fn new_run_line(
+    plot: &mut PlotUi<'_>,
+    o: &Generalised,
+    row: usize,
+    ax: usize,
+    name: &str,
+    colour: Color32,
+    from: f64,
+) {
+    let at = |k: usize| o.t[k];
+    let values = match row {
+        0 => &o.unit.y,
+        1 => &o.v,
+        _ => &o.a,
+    };
+    plot.line(
+        Line::new(format!("new {name}"), series(values, ax, at, |v| v - from))
+            .color(colour)
+            .width(2.0),
+    );
+}
+
+/// On the position plot: the goal of axis `ax` dotted, and a skill's ±1 SD
+/// band around the run, less `from`.
+fn goal_and_band(plot: &mut PlotUi<'_>, o: &Generalised, ax: usize, colour: Color32, from: f64) {
+    let n = o.t.len();
+    plot.hline(
+        HLine::new("", o.goal[ax] - from)
+            .color(colour.gamma_multiply(0.6))
+            .style(LineStyle::dotted_dense()),
+    );
+    if o.band.len() == n {
+        for sign in [-1.0, 1.0] {
+            let points: PlotPoints<'static> = (0..n)
+                .step_by(n.div_ceil(MAX_POINTS).max(1))
+                .map(|k| [o.t[k], o.unit.y[k][ax] - from + sign * o.band[k][ax]])
+                .collect();
+            plot.line(
+                Line::new("", points)
+                    .color(colour.gamma_multiply(0.45))
+                    .width(1.0),
+            );
+        }
+    }
+}
+
+/// The source at its own target, dashed, for axis `ax` on plot `row`, in
+/// real time over its own duration.
+fn own_run_line(
+    plot: &mut PlotUi<'_>,
+    own: &OwnRun<'_>,
+    row: usize,
+    ax: usize,
+    name: &str,
+    colour: Color32,
+) {
+    let m = own.rollout.y.len();
+    let own_t = |k: usize| own.duration_s * k as f64 / (m.max(2) - 1) as f64;
+    let (values, scale, shift) = match row {
+        0 => (&own.rollout.y, 1.0, 0.0),
+        1 => (&own.rollout.v, 1.0 / own.duration_s, 0.0),
+        _ => (&own.rollout.a, 1.0 / (own.duration_s * own.duration_s), 0.0),
+    };
+    plot.line(
+        Line::new(
+            format!("own {name}"),
+            series(values, ax, own_t, |v| v * scale + shift),
+        )
+        .color(colour.gamma_multiply(0.7))
+        .style(LineStyle::dashed_loose()),
+    );
 }

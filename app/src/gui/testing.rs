@@ -3,12 +3,15 @@
 //! returned. Nothing here recomputes the pipeline: it reads what the
 //! session already holds.
 
+use std::collections::BTreeMap;
+
 use eframe::egui;
 
 use web_time::Instant;
 
 use super::app::DmpApp;
 use super::test_hooks::SharedHooks;
+use crate::session::Session;
 
 impl DmpApp {
     /// Serves the tests through `hooks` (their requests in, the state out).
@@ -67,33 +70,6 @@ impl DmpApp {
     pub fn test_state(&self, ctx: &egui::Context) -> serde_json::Value {
         let session = self.session();
         let (dm, km) = self.settings.op;
-        let (done, total, elapsed_ms) = session.shown().map_or((0, 0, 0.0), |s| {
-            let snapshot = &s.snapshot;
-            let ms = snapshot.elapsed.as_secs_f64() * 1e3;
-            (snapshot.done, snapshot.total, ms)
-        });
-        let regen_checksum: Option<f64> = session.model().map(|_| {
-            session
-                .paths()
-                .iter()
-                .flat_map(|r| &r.y)
-                .map(|p| p[0] + 2.0 * p[1] + 3.0 * p[2])
-                .sum()
-        });
-        let rows: Vec<_> = session
-            .table_rows()
-            .iter()
-            .map(|r| {
-                serde_json::json!({
-                    "name": r.name, "dm": r.dm, "km": r.km, "j": r.j,
-                    "d_rot": r.d_rot, "alpha_peak": r.alpha_peak,
-                })
-            })
-            .collect();
-        let names: Vec<&str> = session
-            .model()
-            .map(|m| m.demos().iter().map(|d| d.name.as_str()).collect())
-            .unwrap_or_default();
         let messages: Vec<&str> = session.messages().iter().map(|m| m.text.as_str()).collect();
         let page = session.landscape_page_time();
         let causes: Vec<String> = ctx
@@ -102,24 +78,17 @@ impl DmpApp {
             .map(ToString::to_string)
             .collect();
         serde_json::json!({
-            "demos": names,
+            "demos": demo_names(session),
             "loading": session.loading(),
             "op": [dm, km],
-            "optimum": session.extraction().map(|x| serde_json::json!({
-                "dm": x.eval.dm, "km": x.eval.km, "j": x.j,
-            })),
+            "optimum": optimum_json(session),
             "allowed": session.allowed().map(|v| &v.allowed),
-            "buttons": self
-                .view
-                .preset_buttons
-                .iter()
-                .map(|(name, r)| (name.to_string(), [r.min.x, r.min.y, r.width(), r.height()]))
-                .collect::<std::collections::BTreeMap<_, _>>(),
-            "landscape": {"done": done, "total": total, "elapsed_ms": elapsed_ms},
+            "buttons": preset_buttons(&self.view.preset_buttons),
+            "landscape": landscape_progress(session),
             "landscape_points_here": crate::session::landscape::points_computed_here(),
             "workers": session.worker_stats(),
-            "regen_checksum": regen_checksum,
-            "rows": rows,
+            "regen_checksum": regen_checksum(session),
+            "rows": table_rows_json(session),
             "frames": self.frame_watch.frames,
             "longest_frame_ms_computing": self.frame_watch.longest_ms_computing,
             "longest_frame_at": self.frame_watch.longest_at.0,
@@ -131,36 +100,116 @@ impl DmpApp {
             "compute_ms": page.total_ms,
             "messages": messages,
             "status": session.status().describe(),
-            "diagnostics": session.diagnostics().map(|d| serde_json::json!({
-                "done": d.done,
-                "total": d.total,
-                "values": d.diagnostics,
-                "compute_ms": session.diagnostics_page_time().total_ms,
-                "longest_slice_ms": session.diagnostics_page_time().longest_ms,
-            })),
+            "diagnostics": diagnostics_json(session),
             "repaint_causes": causes,
-            "rl": session.rl().map(|(r, p)| serde_json::json!({
-                "dm": r.runs.first().map(|r| r.dm),
-                "km": r.runs.first().map(|r| r.km),
-                "done": p.done,
-                "decisions": p.decisions.0,
-                "returns": p.returns,
-                "final_error": p.greedy.as_ref().map(|g| g.final_error),
-                "first_reach": p.first_reach.map(|f| f.decisions),
-                "stopped": p.stopped,
-            })),
-            "generalised": session.generalised().map(|g| match g {
-                Ok(g) => serde_json::json!({
-                    "name": g.primitive.name,
-                    "start": g.out.start,
-                    "goal": g.out.goal,
-                    "duration_s": g.out.duration_s,
-                    "peak_speed": g.out.peak_speed,
-                    "a_peak": g.out.a_peak,
-                    "final_error": g.out.final_error,
-                }),
-                Err(e) => serde_json::json!({ "error": e }),
-            }),
+            "rl": rl_json(session),
+            "generalised": generalised_json(session),
         })
     }
+}
+
+/// The demos' names, none before a model.
+fn demo_names(session: &Session) -> Vec<&str> {
+    session
+        .model()
+        .map(|m| m.demos().iter().map(|d| d.name.as_str()).collect())
+        .unwrap_or_default()
+}
+
+/// The extracted optimum's gains and cost, if there is one.
+fn optimum_json(session: &Session) -> Option<serde_json::Value> {
+    session.extraction().map(|x| {
+        serde_json::json!({
+            "dm": x.eval.dm, "km": x.eval.km, "j": x.j,
+        })
+    })
+}
+
+/// Each preset button's rectangle (left, top, width, height) by preset name.
+fn preset_buttons(buttons: &BTreeMap<&'static str, egui::Rect>) -> BTreeMap<String, [f32; 4]> {
+    buttons
+        .iter()
+        .map(|(name, r)| (name.to_string(), [r.min.x, r.min.y, r.width(), r.height()]))
+        .collect()
+}
+
+/// The shown landscape's progress: points done, of all, and the time so far.
+fn landscape_progress(session: &Session) -> serde_json::Value {
+    let (done, total, elapsed_ms) = session.shown().map_or((0, 0, 0.0), |s| {
+        let snapshot = &s.snapshot;
+        let ms = snapshot.elapsed.as_secs_f64() * 1e3;
+        (snapshot.done, snapshot.total, ms)
+    });
+    serde_json::json!({"done": done, "total": total, "elapsed_ms": elapsed_ms})
+}
+
+/// A checksum of the regenerated paths at the operating point, once there is a model.
+fn regen_checksum(session: &Session) -> Option<f64> {
+    session.model().map(|_| {
+        session
+            .paths()
+            .iter()
+            .flat_map(|r| &r.y)
+            .map(|p| p[0] + 2.0 * p[1] + 3.0 * p[2])
+            .sum()
+    })
+}
+
+/// Table I's rows.
+fn table_rows_json(session: &Session) -> Vec<serde_json::Value> {
+    session
+        .table_rows()
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "name": r.name, "dm": r.dm, "km": r.km, "j": r.j,
+                "d_rot": r.d_rot, "alpha_peak": r.alpha_peak,
+            })
+        })
+        .collect()
+}
+
+/// The diagnostics so far and their timings, once they have started.
+fn diagnostics_json(session: &Session) -> Option<serde_json::Value> {
+    session.diagnostics().map(|d| {
+        serde_json::json!({
+            "done": d.done,
+            "total": d.total,
+            "values": d.diagnostics,
+            "compute_ms": session.diagnostics_page_time().total_ms,
+            "longest_slice_ms": session.diagnostics_page_time().longest_ms,
+        })
+    })
+}
+
+/// The RL run's gains and progress, if there is one.
+fn rl_json(session: &Session) -> Option<serde_json::Value> {
+    session.rl().map(|(r, p)| {
+        serde_json::json!({
+            "dm": r.runs.first().map(|r| r.dm),
+            "km": r.runs.first().map(|r| r.km),
+            "done": p.done,
+            "decisions": p.decisions.0,
+            "returns": p.returns,
+            "final_error": p.greedy.as_ref().map(|g| g.final_error),
+            "first_reach": p.first_reach.map(|f| f.decisions),
+            "stopped": p.stopped,
+        })
+    })
+}
+
+/// The run at a new target: its figures, or why there is none.
+fn generalised_json(session: &Session) -> Option<serde_json::Value> {
+    session.generalised().map(|g| match g {
+        Ok(g) => serde_json::json!({
+            "name": g.primitive.name,
+            "start": g.out.start,
+            "goal": g.out.goal,
+            "duration_s": g.out.duration_s,
+            "peak_speed": g.out.peak_speed,
+            "a_peak": g.out.a_peak,
+            "final_error": g.out.final_error,
+        }),
+        Err(e) => serde_json::json!({ "error": e }),
+    })
 }

@@ -5,7 +5,7 @@
 
 use dmpscope_core::extract::diagnostics::pareto::pareto_front;
 use eframe::egui::{self, Color32};
-use egui_plot::{Line, MarkerShape, Plot, PlotPoint, Points};
+use egui_plot::{Line, MarkerShape, Plot, PlotPoint, PlotTransform, PlotUi, Points};
 
 use crate::session::Shown;
 use dmpscope_core::Quantity;
@@ -42,15 +42,7 @@ pub struct Marks {
 /// Shows the front; returns the grid index of the front point nearest a
 /// click (on screen), if any.
 pub fn show(ui: &mut egui::Ui, shown: &Shown, front: &[usize], marks: &Marks) -> Option<usize> {
-    let points: Vec<[f64; 2]> = front
-        .iter()
-        .map(|&i| {
-            [
-                shown.values(Quantity::DSum)[i],
-                shown.values(Quantity::S)[i],
-            ]
-        })
-        .collect();
+    let points = front_points(shown, front);
     ui.label(format!(
         "{} of {} grid points are Pareto-optimal in (sum d, S): none beats them in both. \
          J's optimum is where the line of slope -k touches the front (the refined optimum \
@@ -65,38 +57,8 @@ pub fn show(ui: &mut egui::Ui, shown: &Shown, front: &[usize], marks: &Marks) ->
         .y_axis_label("S")
         .allow_scroll(false)
         .show(ui, |plot| {
-            // Segment by segment: the stroked path of these points came out
-            // as a filled wedge under the software renderers.
-            for (n, pair) in thinned(&points).windows(2).enumerate() {
-                plot.line(
-                    Line::new("front", pair.to_vec())
-                        .id(("front", n))
-                        .color(Color32::from_rgb(120, 200, 255))
-                        .width(1.0),
-                );
-            }
-            plot.points(
-                Points::new("grid points", points.clone())
-                    .radius(2.0)
-                    .color(Color32::from_rgb(120, 200, 255)),
-            );
-            if let (Some([x0, y0]), Some(first), Some(last)) =
-                (marks.optimum, points.first(), points.last())
-            {
-                let (a, b) = (first[0].min(x0), last[0].max(x0));
-                let y = |x: f64| y0 - marks.k * (x - x0);
-                plot.line(
-                    Line::new("slope -k", vec![[a, y(a)], [b, y(b)]])
-                        .color(Color32::from_rgb(255, 90, 60))
-                        .width(1.0),
-                );
-                plot.points(
-                    Points::new("optimum", vec![[x0, y0]])
-                        .shape(MarkerShape::Diamond)
-                        .radius(6.0)
-                        .color(Color32::from_rgb(255, 90, 60)),
-                );
-            }
+            front_items(plot, &points);
+            optimum_items(plot, &points, marks);
             if let Some(p) = marks.op {
                 plot.points(
                     Points::new("operating point", vec![p])
@@ -112,8 +74,71 @@ pub fn show(ui: &mut egui::Ui, shown: &Shown, front: &[usize], marks: &Marks) ->
         return None;
     }
     let pointer = pointer?;
+    let nearest = nearest_on_screen(&points, &transform, &pointer)?;
+    Some(front[nearest])
+}
+
+/// `(sum d, S)` of each grid point on the front.
+fn front_points(shown: &Shown, front: &[usize]) -> Vec<[f64; 2]> {
+    front
+        .iter()
+        .map(|&i| {
+            [
+                shown.values(Quantity::DSum)[i],
+                shown.values(Quantity::S)[i],
+            ]
+        })
+        .collect()
+}
+
+/// The front as segments between its (thinned) points, and its grid points.
+fn front_items(plot: &mut PlotUi<'_>, points: &[[f64; 2]]) {
+    // Segment by segment: the stroked path of these points came out
+    // as a filled wedge under the software renderers.
+    for (n, pair) in thinned(points).windows(2).enumerate() {
+        plot.line(
+            Line::new("front", pair.to_vec())
+                .id(("front", n))
+                .color(Color32::from_rgb(120, 200, 255))
+                .width(1.0),
+        );
+    }
+    plot.points(
+        Points::new("grid points", points.to_vec())
+            .radius(2.0)
+            .color(Color32::from_rgb(120, 200, 255)),
+    );
+}
+
+/// The optimum, if extracted, and the line of slope -k through it across the front.
+fn optimum_items(plot: &mut PlotUi<'_>, points: &[[f64; 2]], marks: &Marks) {
+    if let (Some([x0, y0]), Some(first), Some(last)) =
+        (marks.optimum, points.first(), points.last())
+    {
+        let (a, b) = (first[0].min(x0), last[0].max(x0));
+        let y = |x: f64| y0 - marks.k * (x - x0);
+        plot.line(
+            Line::new("slope -k", vec![[a, y(a)], [b, y(b)]])
+                .color(Color32::from_rgb(255, 90, 60))
+                .width(1.0),
+        );
+        plot.points(
+            Points::new("optimum", vec![[x0, y0]])
+                .shape(MarkerShape::Diamond)
+                .radius(6.0)
+                .color(Color32::from_rgb(255, 90, 60)),
+        );
+    }
+}
+
+/// The index in `points` of the one nearest `pointer` on screen.
+fn nearest_on_screen(
+    points: &[[f64; 2]],
+    transform: &PlotTransform,
+    pointer: &PlotPoint,
+) -> Option<usize> {
     // The nearest front point on screen.
-    let at = transform.position_from_point(&pointer);
+    let at = transform.position_from_point(pointer);
     let nearest = points
         .iter()
         .enumerate()
@@ -122,7 +147,7 @@ pub fn show(ui: &mut egui::Ui, shown: &Shown, front: &[usize], marks: &Marks) ->
             (n, q.distance_sq(at))
         })
         .min_by(|a, b| a.1.total_cmp(&b.1))?;
-    Some(front[nearest.0])
+    Some(nearest.0)
 }
 
 /// The front's points without those closer than a thousandth of its span

@@ -106,25 +106,48 @@ pub fn rosbag2_folder(name: &str, splits: &[(usize, usize)], short: bool) -> Pat
 /// and a moving `/hand` PoseStamped topic (another reach, 1 s later).
 pub fn tf_bag_bytes() -> Vec<u8> {
     use dmpscope_core::load::decode::ros2;
-    use dmpscope_core::load::decode::ros2::StampedTransform;
-    use mcap::records::MessageHeader;
     let epoch: i64 = 1_700_000_000_000_000_000;
-    let reach = |t0: i64, scale: f64| -> Vec<(i64, [f64; 3])> {
-        (0..160)
-            .map(|k| {
-                let s = k as f64 / 159.0;
-                let m = 10.0 * s.powi(3) - 15.0 * s.powi(4) + 6.0 * s.powi(5);
-                (
-                    t0 + k * 11_111_111,
-                    [0.3 + 0.4 * scale * m, 0.1 * m, 1.0 + 0.05 * m * scale],
-                )
-            })
-            .collect()
-    };
     let mut w = mcap::WriteOptions::new()
         .profile("ros2")
         .create(std::io::Cursor::new(Vec::new()))
         .expect("writer");
+    let [tf_id, static_id, hand_id] = tf_bag_channels(&mut w);
+    write_tf_messages(&mut w, tf_id, static_id, epoch);
+    for (k, (t, p)) in tf_reach(epoch + 2_000_000_000, 0.8).into_iter().enumerate() {
+        put_message(
+            &mut w,
+            hand_id,
+            k,
+            t,
+            &ros2::encode_pose_stamped(t, "world", p),
+        );
+    }
+    w.finish().expect("finish");
+    w.into_inner().into_inner()
+}
+
+/// The MCAP writer of [`tf_bag_bytes`], in memory.
+type BagWriter = mcap::Writer<std::io::Cursor<Vec<u8>>>;
+
+/// A smooth reach of 160 samples at 90 Hz from `t0` (ns), its x and z
+/// extent times `scale`.
+fn tf_reach(t0: i64, scale: f64) -> Vec<(i64, [f64; 3])> {
+    (0..160)
+        .map(|k| {
+            let s = k as f64 / 159.0;
+            let m = 10.0 * s.powi(3) - 15.0 * s.powi(4) + 6.0 * s.powi(5);
+            (
+                t0 + k * 11_111_111,
+                [0.3 + 0.4 * scale * m, 0.1 * m, 1.0 + 0.05 * m * scale],
+            )
+        })
+        .collect()
+}
+
+/// The TF bag's schemas and its channels `/tf`, `/tf_static` and `/hand`, in
+/// that order.
+fn tf_bag_channels(w: &mut BagWriter) -> [u16; 3] {
+    use dmpscope_core::load::decode::ros2;
     let tf = w
         .add_schema(
             "tf2_msgs/msg/TFMessage",
@@ -145,16 +168,27 @@ pub fn tf_bag_bytes() -> Vec<u8> {
         .add_channel(tf, "/tf_static", "cdr", &meta)
         .expect("channel");
     let hand_id = w.add_channel(pose, "/hand", "cdr", &meta).expect("channel");
-    let mut put = |id: u16, seq: usize, t: i64, data: &[u8]| {
-        let time = u64::try_from(t).expect("stamp");
-        let header = MessageHeader {
-            channel_id: id,
-            sequence: seq as u32,
-            log_time: time,
-            publish_time: time,
-        };
-        w.write_to_known_channel(&header, data).expect("message");
+    [tf_id, static_id, hand_id]
+}
+
+/// Writes message `seq` of channel `id`, logged and published at `t` (ns).
+fn put_message(w: &mut BagWriter, id: u16, seq: usize, t: i64, data: &[u8]) {
+    use mcap::records::MessageHeader;
+    let time = u64::try_from(t).expect("stamp");
+    let header = MessageHeader {
+        channel_id: id,
+        sequence: seq as u32,
+        log_time: time,
+        publish_time: time,
     };
+    w.write_to_known_channel(&header, data).expect("message");
+}
+
+/// `/tf_static`'s one message (`world` to `base_link`), then `/tf` with the
+/// moving `tracker` and the still `shoulder_link`.
+fn write_tf_messages(w: &mut BagWriter, tf_id: u16, static_id: u16, epoch: i64) {
+    use dmpscope_core::load::decode::ros2;
+    use dmpscope_core::load::decode::ros2::StampedTransform;
     let statics = [StampedTransform {
         stamp_ns: epoch,
         frame_id: "world",
@@ -162,8 +196,8 @@ pub fn tf_bag_bytes() -> Vec<u8> {
         translation: [0.1, 0.0, 0.0],
         rotation: [0.0, 0.0, 0.0, 1.0],
     }];
-    put(static_id, 0, epoch, &ros2::encode_tf_message(&statics));
-    for (k, (t, p)) in reach(epoch, 1.0).into_iter().enumerate() {
+    put_message(w, static_id, 0, epoch, &ros2::encode_tf_message(&statics));
+    for (k, (t, p)) in tf_reach(epoch, 1.0).into_iter().enumerate() {
         let ts = [
             StampedTransform {
                 stamp_ns: t,
@@ -180,13 +214,8 @@ pub fn tf_bag_bytes() -> Vec<u8> {
                 rotation: [0.0, 0.0, 0.0, 1.0],
             },
         ];
-        put(tf_id, k, t, &ros2::encode_tf_message(&ts));
+        put_message(w, tf_id, k, t, &ros2::encode_tf_message(&ts));
     }
-    for (k, (t, p)) in reach(epoch + 2_000_000_000, 0.8).into_iter().enumerate() {
-        put(hand_id, k, t, &ros2::encode_pose_stamped(t, "world", p));
-    }
-    w.finish().expect("finish");
-    w.into_inner().into_inner()
 }
 
 /// The run at a new target the app shows; panics when it is off or failed.

@@ -20,7 +20,7 @@ use crate::load::options::GapPolicy;
 use crate::load::options::Grouping;
 use crate::load::options::SegmentSettings;
 use crate::load::options::{LoadOptions, StreamFilter, matches_stream};
-use crate::load::source::{SourceData, SourceDemos, load_streams};
+use crate::load::source::{SourceData, load_streams};
 use crate::notice::Notice;
 
 /// What happened to a stream.
@@ -136,9 +136,46 @@ pub fn arrange(
     overrides: &Overrides,
 ) -> Result<Arranged> {
     let mut out = Arranged::default();
-    let min = how.filter.min_extent_m;
     let mut chosen = Vec::new();
     for stream in streams {
+        let index = out.streams.len();
+        let parts = out.screen(stream, how, overrides);
+        chosen.extend(parts.into_iter().map(|p| (index, p)));
+    }
+    if !matches!(how.demos, Grouping::Segmented(_)) {
+        out.notices
+            .extend(movement_hints(chosen.iter().map(|(_, p)| p)));
+    }
+    let (owners, parts): (Vec<usize>, Vec<RawDemo>) = chosen.into_iter().unzip();
+    let (demos, said) = group_noting(parts, &how.demos)?;
+    out.demos = demos;
+    out.notices.extend(said);
+    if !matches!(how.demos, Grouping::PerTopic) {
+        out.recount(&owners);
+    }
+    let rests = crate::arrange::rest::apply(&mut out.demos, &how.rest, how.trim_rest);
+    out.notices.extend(rests);
+    // Only demos: a map frame or an odometry stream far from the origin
+    // that was skipped says nothing about the units.
+    let odd_size = out
+        .demos
+        .iter()
+        .filter_map(|d| crate::load::units::suspect(d, how.units));
+    out.notices.extend(odd_size.collect::<Vec<_>>());
+    Ok(out)
+}
+
+impl Arranged {
+    /// Lists `stream` with what became of it, and gives its parts that are
+    /// demos: none when it is skipped, one or more when a break in time
+    /// splits it (a part judged as a demo on its own).
+    fn screen(
+        &mut self,
+        stream: RawDemo,
+        how: &Arrangement,
+        overrides: &Overrides,
+    ) -> Vec<RawDemo> {
+        let min = how.filter.min_extent_m;
         let mut info = StreamInfo {
             file: stream.file.clone(),
             topic: stream.topic.clone(),
@@ -158,20 +195,20 @@ pub fn arrange(
                 StreamStatus::Excluded(_) | StreamStatus::NotSelected => Notice::info,
                 _ => Notice::warning,
             };
-            out.notices.push(level(format!(
+            self.notices.push(level(format!(
                 "{}: {}: skipped: {}",
                 info.file,
                 info.topic,
                 info.status.reason(min)
             )));
-            out.streams.push(info);
-            continue;
+            self.streams.push(info);
+            return Vec::new();
         }
         let forced = overrides.get(&stream.topic) == Some(&true);
         let (parts, said) = gaps::apply(vec![stream], how.gaps);
-        out.notices.extend(said);
+        self.notices.extend(said);
         let split = parts.len() > 1;
-        let mut kept_parts = 0;
+        let mut kept = Vec::new();
         for part in parts {
             let still = part.extent_m() < min;
             if split && !forced && (still || no_time(&part)) {
@@ -181,7 +218,7 @@ pub fn arrange(
                 } else {
                     StreamStatus::NoTime
                 };
-                out.notices.push(Notice::warning(format!(
+                self.notices.push(Notice::warning(format!(
                     "{}: {}: skipped: {}",
                     part.file,
                     part.name,
@@ -189,42 +226,27 @@ pub fn arrange(
                 )));
                 continue;
             }
-            kept_parts += 1;
-            chosen.push((out.streams.len(), part));
+            kept.push(part);
         }
-        info.demos = kept_parts;
-        out.streams.push(info);
+        info.demos = kept.len();
+        self.streams.push(info);
+        kept
     }
-    if !matches!(how.demos, Grouping::Segmented(_)) {
-        for (_, part) in &chosen {
-            if let Some(n) = movements(part)
-                && n > 1
-            {
-                out.notices.push(Notice::info(format!(
-                    "{}: {}: holds {n} movements between rest periods: --demos segment \
-                     (the app's Loading: demos per segment) cuts it into demos",
-                    part.file, part.topic
-                )));
-            }
+
+    /// Counts each stream's demos again after a grouping that does not map
+    /// parts one-to-one to demos (segments, one per file).
+    fn recount(&mut self, owners: &[usize]) {
+        for &i in owners {
+            self.streams[i].demos = 0;
         }
-    }
-    let (owners, parts): (Vec<usize>, Vec<RawDemo>) = chosen.into_iter().unzip();
-    let (demos, said) = group_noting(parts, &how.demos)?;
-    out.demos = demos;
-    out.notices.extend(said);
-    if !matches!(how.demos, Grouping::PerTopic) {
-        // Segments and per-file choices no longer map one-to-one to parts.
-        for i in owners {
-            out.streams[i].demos = 0;
-        }
-        for demo in &out.demos {
+        for demo in &self.demos {
             // A segment's topic is its stream's with `#k`.
             let stream_topic = demo
                 .topic
                 .rsplit_once('#')
                 .filter(|(_, k)| k.parse::<usize>().is_ok())
                 .map_or(demo.topic.as_str(), |(head, _)| head);
-            if let Some(s) = out.streams.iter_mut().find(|s| {
+            if let Some(s) = self.streams.iter_mut().find(|s| {
                 (s.topic == demo.topic || s.topic == stream_topic)
                     && s.file == demo.file
                     && s.status.kept()
@@ -233,16 +255,20 @@ pub fn arrange(
             }
         }
     }
-    let rests = crate::arrange::rest::apply(&mut out.demos, &how.rest, how.trim_rest);
-    out.notices.extend(rests);
-    // Only demos: a map frame or an odometry stream far from the origin
-    // that was skipped says nothing about the units.
-    let odd_size = out
-        .demos
-        .iter()
-        .filter_map(|d| crate::load::units::suspect(d, how.units));
-    out.notices.extend(odd_size.collect::<Vec<_>>());
-    Ok(out)
+}
+
+/// A hint for each part that holds several movements between rests.
+fn movement_hints<'a>(parts: impl Iterator<Item = &'a RawDemo>) -> Vec<Notice> {
+    parts
+        .filter_map(|part| {
+            let n = movements(part).filter(|&n| n > 1)?;
+            Some(Notice::info(format!(
+                "{}: {}: holds {n} movements between rest periods: --demos segment \
+                 (the app's Loading: demos per segment) cuts it into demos",
+                part.file, part.topic
+            )))
+        })
+        .collect()
 }
 
 fn judge(stream: &RawDemo, info: &StreamInfo, filter: &StreamFilter) -> StreamStatus {
@@ -289,6 +315,22 @@ fn movements(stream: &RawDemo) -> Option<usize> {
     find_segments(stream, &settings).ok().map(|s| s.len())
 }
 
+/// What one source gave, arranged: its demonstrations in load order, what
+/// the user should be told, every stream with what became of it, and the
+/// topics the reader did not read.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SourceDemos {
+    /// The demonstrations.
+    pub demos: Vec<RawDemo>,
+    /// Topics skipped, a truncated file's lost tail, and the like.
+    pub notices: Vec<Notice>,
+    /// Every stream and what became of it.
+    pub streams: Vec<StreamInfo>,
+    /// Topics the reader did not read, with why (their schema, or what
+    /// they are).
+    pub skipped: Vec<(String, String)>,
+}
+
 /// Loads a source and arranges its streams into demonstrations
 /// ([`crate::arrange`]: the topic patterns, breaks in time split or
 /// bridged, still and timeless streams skipped, the grouping; method.md
@@ -297,15 +339,16 @@ fn movements(stream: &RawDemo) -> Option<usize> {
 /// together (pooled names are made unique by
 /// [`crate::arrange::streams::unique_names`]).
 pub fn load_source(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Result<SourceDemos> {
-    let mut loaded = load_streams(name, data, options)?;
-    let arranged = arrange(
-        std::mem::take(&mut loaded.demos),
-        &Arrangement::of(options),
-        &Overrides::new(),
-    )?;
-    loaded.notices.extend(arranged.notices);
-    loaded.demos = arranged.demos;
-    Ok(loaded)
+    let loaded = load_streams(name, data, options)?;
+    let arranged = arrange(loaded.demos, &Arrangement::of(options), &Overrides::new())?;
+    let mut notices = loaded.notices;
+    notices.extend(arranged.notices);
+    Ok(SourceDemos {
+        demos: arranged.demos,
+        notices,
+        streams: arranged.streams,
+        skipped: loaded.skipped,
+    })
 }
 
 /// Makes demonstration names unique across everything loaded: names that
@@ -389,18 +432,6 @@ mod tests {
             rest: SegmentSettings::default(),
             units: crate::load::units::Units::M,
         }
-    }
-
-    #[test]
-    fn globs_match_topics_keys_and_wildcards() {
-        assert!(glob("/vive/*", "/vive/hand"));
-        assert!(glob("*hand?", "/left_hand1"));
-        assert!(!glob("/vive/*", "/tf"));
-        assert!(glob("*", ""));
-        assert!(matches_stream("/tf", "/tf:tracker"));
-        assert!(matches_stream("track*", "/tf:tracker"));
-        assert!(!matches_stream("/tf_static", "/tf:tracker"));
-        assert!(glob("/händ", "/händ"));
     }
 
     #[test]

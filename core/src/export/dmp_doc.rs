@@ -277,17 +277,7 @@ pub fn dmp_document(
         name: primitive.name.clone(),
         source: ctx.source,
         demos: ctx.demos,
-        equations: Equations {
-            transformation_system: TRANSFORMATION,
-            canonical_system: CANONICAL,
-            forcing_term: FORCING,
-            spatial_scaling: match ctx.scaling {
-                Scaling::Paper => SCALING_PAPER,
-                Scaling::Frame => SCALING_FRAME,
-            },
-            integration: INTEGRATION,
-            unit_time: UNIT_TIME,
-        },
+        equations: equations(ctx.scaling),
         integration: Integration {
             scheme: "semi_implicit_euler",
             points: n,
@@ -295,19 +285,7 @@ pub fn dmp_document(
         },
         tau,
         fitted_duration_s: primitive.duration_s,
-        gains: Gains {
-            unit_time: GainPair {
-                d: primitive.dm,
-                k: primitive.km,
-            },
-            real_time: GainPair {
-                d: primitive.dm / tau,
-                k: primitive.km / (tau * tau),
-            },
-            zeta: crate::landscape::model::zeta(primitive.dm, primitive.km),
-            natural_frequency_rad_s: primitive.km.sqrt() / tau,
-            settling_time_s: crate::extract::robot::settling_time(primitive.dm, primitive.km) * tau,
-        },
+        gains: gains(primitive, tau),
         alpha_x: primitive.alpha_x,
         basis: BasisDoc {
             count: ctx.basis.0.len(),
@@ -331,13 +309,7 @@ pub fn dmp_document(
         },
         frame_id: ctx.frame_id,
         up_axis: "z",
-        units: Units {
-            position: "m",
-            time: "s",
-            velocity: "m/s",
-            acceleration: "m/s^2",
-            recorded: ctx.recorded_units.name(),
-        },
+        units: units(ctx.recorded_units),
         rollout: RolloutDoc {
             t: out.t.clone(),
             y: crate::geom::arrays(&out.unit.y),
@@ -350,6 +322,49 @@ pub fn dmp_document(
     };
     validate(&doc)?;
     Ok(doc)
+}
+
+/// The equations in words, with the scaling's.
+fn equations(scaling: Scaling) -> Equations {
+    Equations {
+        transformation_system: TRANSFORMATION,
+        canonical_system: CANONICAL,
+        forcing_term: FORCING,
+        spatial_scaling: match scaling {
+            Scaling::Paper => SCALING_PAPER,
+            Scaling::Frame => SCALING_FRAME,
+        },
+        integration: INTEGRATION,
+        unit_time: UNIT_TIME,
+    }
+}
+
+/// The gains in unit and real time at the duration `tau`.
+fn gains(primitive: &Primitive, tau: f64) -> Gains {
+    Gains {
+        unit_time: GainPair {
+            d: primitive.dm,
+            k: primitive.km,
+        },
+        real_time: GainPair {
+            d: primitive.dm / tau,
+            k: primitive.km / (tau * tau),
+        },
+        zeta: crate::landscape::model::zeta(primitive.dm, primitive.km),
+        natural_frequency_rad_s: primitive.km.sqrt() / tau,
+        settling_time_s: crate::extract::robot::settling_time(primitive.dm, primitive.km) * tau,
+    }
+}
+
+/// The units of every number, and the recordings' own.
+fn units(recorded: crate::load::units::Units) -> Units {
+    Units {
+        position: "m",
+        time: "s",
+        velocity: "m/s",
+        acceleration: "m/s^2",
+        recorded: recorded.name(),
+    }
 }
 
 /// The orientation part of the document, for a primitive with one.

@@ -21,63 +21,16 @@ pub struct Transform<'a> {
 
 /// The JSON Schema of a Foxglove schema (the schema data of a JSON channel).
 pub fn json_schema(schema: FoxgloveSchema) -> String {
-    let number = || json!({ "type": "number" });
-    let time = |what: &str| {
-        json!({
-            "type": "object",
-            "title": "time",
-            "description": what,
-            "properties": {
-                "sec": { "type": "integer", "minimum": 0 },
-                "nsec": { "type": "integer", "minimum": 0, "maximum": 999_999_999 }
-            }
-        })
-    };
-    let vector3 = || {
-        json!({
-            "type": "object",
-            "title": "foxglove.Vector3",
-            "properties": { "x": number(), "y": number(), "z": number() }
-        })
-    };
-    let quaternion = || {
-        json!({
-            "type": "object",
-            "title": "foxglove.Quaternion",
-            "properties": { "x": number(), "y": number(), "z": number(), "w": number() }
-        })
-    };
-    let pose = || {
-        json!({
-            "type": "object",
-            "title": "foxglove.Pose",
-            "properties": { "position": vector3(), "orientation": quaternion() }
-        })
-    };
     let string = || json!({ "type": "string" });
-    let transform = || {
-        json!({
-            "type": "object",
-            "title": "foxglove.FrameTransform",
-            "description": "A transform between two reference frames in 3D space",
-            "properties": {
-                "timestamp": time("Timestamp of transform"),
-                "parent_frame_id": string(),
-                "child_frame_id": string(),
-                "translation": vector3(),
-                "rotation": quaternion()
-            }
-        })
-    };
     let value = match schema {
         FoxgloveSchema::PoseInFrame => json!({
             "type": "object",
             "title": "foxglove.PoseInFrame",
             "description": "A timestamped pose for an object or reference frame in 3D space",
             "properties": {
-                "timestamp": time("Timestamp of pose"),
+                "timestamp": time_schema("Timestamp of pose"),
                 "frame_id": string(),
-                "pose": pose()
+                "pose": pose_schema()
             }
         }),
         FoxgloveSchema::PosesInFrame => json!({
@@ -85,22 +38,73 @@ pub fn json_schema(schema: FoxgloveSchema) -> String {
             "title": "foxglove.PosesInFrame",
             "description": "An array of timestamped poses for an object or reference frame in 3D space",
             "properties": {
-                "timestamp": time("Timestamp of pose"),
+                "timestamp": time_schema("Timestamp of pose"),
                 "frame_id": string(),
-                "poses": { "type": "array", "items": pose() }
+                "poses": { "type": "array", "items": pose_schema() }
             }
         }),
-        FoxgloveSchema::FrameTransform => transform(),
+        FoxgloveSchema::FrameTransform => transform_schema(),
         FoxgloveSchema::FrameTransforms => json!({
             "type": "object",
             "title": "foxglove.FrameTransforms",
             "description": "An array of FrameTransform messages",
             "properties": {
-                "transforms": { "type": "array", "items": transform() }
+                "transforms": { "type": "array", "items": transform_schema() }
             }
         }),
     };
     value.to_string()
+}
+
+/// The schema of a Foxglove time.
+fn time_schema(what: &str) -> Value {
+    json!({
+        "type": "object",
+        "title": "time",
+        "description": what,
+        "properties": {
+            "sec": { "type": "integer", "minimum": 0 },
+            "nsec": { "type": "integer", "minimum": 0, "maximum": 999_999_999 }
+        }
+    })
+}
+
+/// The schema of `foxglove.Vector3` (`xyz`) or `foxglove.Quaternion`
+/// (`xyzw`).
+fn components_schema(title: &str, names: &[&str]) -> Value {
+    let properties: serde_json::Map<String, Value> = names
+        .iter()
+        .map(|n| ((*n).to_owned(), json!({ "type": "number" })))
+        .collect();
+    json!({ "type": "object", "title": title, "properties": properties })
+}
+
+/// The schema of `foxglove.Pose`.
+fn pose_schema() -> Value {
+    json!({
+        "type": "object",
+        "title": "foxglove.Pose",
+        "properties": {
+            "position": components_schema("foxglove.Vector3", &["x", "y", "z"]),
+            "orientation": components_schema("foxglove.Quaternion", &["x", "y", "z", "w"])
+        }
+    })
+}
+
+/// The schema of `foxglove.FrameTransform`.
+fn transform_schema() -> Value {
+    json!({
+        "type": "object",
+        "title": "foxglove.FrameTransform",
+        "description": "A transform between two reference frames in 3D space",
+        "properties": {
+            "timestamp": time_schema("Timestamp of transform"),
+            "parent_frame_id": { "type": "string" },
+            "child_frame_id": { "type": "string" },
+            "translation": components_schema("foxglove.Vector3", &["x", "y", "z"]),
+            "rotation": components_schema("foxglove.Quaternion", &["x", "y", "z", "w"])
+        }
+    })
 }
 
 fn time_json(stamp_ns: i64) -> Value {

@@ -12,6 +12,7 @@
 use crate::error::{Error, Result};
 use crate::fit::mapping::norm;
 pub use crate::fit::mapping::{Mapping, Scaling};
+use crate::fit::orientation::OrientationRollout;
 use crate::geom::Vec3;
 use crate::landscape::model::{Model, Rollout};
 
@@ -105,7 +106,7 @@ pub struct Generalised {
     /// scaling).
     pub warnings: Vec<String>,
     /// The orientation path in unit time, when the primitive has one.
-    pub orientation: Option<crate::fit::orientation::OrientationRollout>,
+    pub orientation: Option<OrientationRollout>,
     /// The goal orientation it ran to (its own when none was asked for; a
     /// new one with the sign the run took), with an orientation DMP.
     pub orientation_goal: Option<crate::rotation::Q>,
@@ -211,81 +212,22 @@ impl Primitive {
         let start = target.start.unwrap_or_else(|| self.start_abs());
         let goal = target.goal.unwrap_or_else(|| self.goal_abs());
         let duration = target.duration_s.unwrap_or(self.duration_s);
-        for (what, v) in [("--start", start), ("--goal", goal)] {
-            if v.iter().any(|c| !c.is_finite()) {
-                return Err(Error::InvalidSetting(format!(
-                    "the {} ({what}) must be three finite numbers, got {v:?}",
-                    what.trim_start_matches('-')
-                )));
-            }
-        }
-        if !(duration.is_finite() && duration > 0.0) {
-            return Err(Error::InvalidSetting(format!(
-                "the duration (--duration) must be a positive number of seconds, got {duration}"
-            )));
-        }
-        if !(MIN_DURATION_S..=MAX_DURATION_S).contains(&duration) {
-            return Err(Error::InvalidSetting(format!(
-                "the duration (--duration) must be between {MIN_DURATION_S} s and \
-                 {MAX_DURATION_S} s, got {duration}"
-            )));
-        }
-        if start == goal {
-            return Err(Error::InvalidSetting(format!(
-                "the goal (--goal) equals the start (--start), {start:?}: a point-to-point \
-                 motion needs them apart"
-            )));
-        }
+        check_target(start, goal, duration)?;
         // Relative coordinates: the defaults keep the primitive's own bits.
-        let y0 = match target.start {
-            Some(s) => Vec3::from_fn(|a, _| s[a] - self.origin[a]),
-            None => self.y0,
+        let relative = |p: Option<Vec3>, own: Vec3| {
+            p.map_or(own, |s| Vec3::from_fn(|a, _| s[a] - self.origin[a]))
         };
-        let g = match target.goal {
-            Some(s) => Vec3::from_fn(|a, _| s[a] - self.origin[a]),
-            None => self.goal,
-        };
-        // The map from the absolute numbers an export holds (docs/export.md),
-        // so a runner computes the same one; at the defaults from == to.
-        let (own_start, own_goal) = (self.start_abs(), self.goal_abs());
-        let from: Vec3 = Vec3::from_fn(|a, _| own_goal[a] - own_start[a]);
-        let to: Vec3 = Vec3::from_fn(|a, _| goal[a] - start[a]);
-        let mapping = Mapping::between(from, to, target.scaling).map_err(|e| match e {
-            Error::InvalidSetting(m) => Error::InvalidSetting(format!("{}: {m}", self.name)),
-            other => other,
-        })?;
-        let mut warnings = Vec::new();
-        if let (Scaling::Paper, Mapping::Diagonal(factors)) = (target.scaling, mapping) {
-            let extent = self.extent;
-            for (a, axis) in ["x", "y", "z"].iter().enumerate() {
-                // Only where the factor does something.
-                if from[a].abs() < 0.05 * extent && (factors[a] - 1.0).abs() > 1e-6
-                    || from[a].abs() < 1e-9 && to[a].abs() >= 1e-9
-                {
-                    warnings.push(format!(
-                        "{}: start and goal differ by {:.1} mm on {axis}, under 5 % of the \
-                         motion's {:.0} mm; per-axis scaling {} there (try --scaling frame)",
-                        self.name,
-                        from[a].abs() * 1e3,
-                        extent * 1e3,
-                        if from[a].abs() < 1e-9 {
-                            "leaves that axis's forcing term unscaled".to_owned()
-                        } else {
-                            format!("multiplies that axis's forcing term by {:.3}", factors[a])
-                        }
-                    ));
-                }
-            }
-        }
-        let n = self.fdt2.len();
-        let dt = self.dt();
+        let (y0, g) = (
+            relative(target.start, self.y0),
+            relative(target.goal, self.goal),
+        );
+        let (mapping, warnings) = self.mapping_to(start, goal, target.scaling)?;
         let fdt2: Vec<Vec3> = if mapping == Mapping::IDENTITY {
             self.fdt2.clone()
         } else {
             self.fdt2.iter().map(|f| mapping.apply(*f)).collect()
         };
-        let v0 = mapping.apply(self.v0);
-        let mut unit = self.integrate(y0, g, &fdt2, v0);
+        let mut unit = self.integrate(y0, g, &fdt2, mapping.apply(self.v0));
         for p in &mut unit.y {
             *p = Vec3::from_fn(|a, _| p[a] + self.origin[a]);
         }
@@ -294,32 +236,14 @@ impl Primitive {
             unit.y[0] = s;
         }
         let band = self.band(y0, g, &mapping, &unit.y);
+        let n = self.fdt2.len();
+        let dt = self.dt();
         let t: Vec<f64> = (0..n).map(|k| duration * k as f64 * dt).collect();
         let v: Vec<Vec3> = unit.v.iter().map(|v| v.map(|c| c / duration)).collect();
         let dur2 = duration * duration;
         let a: Vec<Vec3> = unit.a.iter().map(|a| a.map(|c| c / dur2)).collect();
-        let finite = |rows: &[Vec3]| {
-            rows.iter()
-                .all(|r| r.x.is_finite() && r.y.is_finite() && r.z.is_finite())
-        };
-        if !(finite(&unit.y) && finite(&v) && finite(&a) && finite(&band)) {
-            return Err(Error::InvalidSetting(format!(
-                "{}: the motion diverges at D/M {} and K/M {} over {duration} s (its numbers \
-                 overflow): nothing to run or export",
-                self.name, self.dm, self.km
-            )));
-        }
-        let orientation = match &self.orientation {
-            Some(o) => Some(o.rollout(target.start_orientation, target.goal_orientation)),
-            None if target.start_orientation.is_some() || target.goal_orientation.is_some() => {
-                return Err(Error::InvalidSetting(format!(
-                    "{}: no orientation to run to a new start or goal orientation (its \
-                     recording has none, or the skill of several demos)",
-                    self.name
-                )));
-            }
-            None => None,
-        };
+        self.check_finite([&unit.y, &v, &a, &band], duration)?;
+        let orientation = self.orientation_rollout(target)?;
         let peak_speed = v.iter().map(|v| norm(*v)).fold(0.0, f64::max);
         let a_peak = a.iter().map(|a| norm(*a)).fold(0.0, f64::max);
         let last = unit.y[n - 1];
@@ -344,6 +268,83 @@ impl Primitive {
                 .as_ref()
                 .map(|o| o.ends(target.start_orientation, target.goal_orientation).1),
         })
+    }
+
+    /// The map from the primitive's own displacement to `goal - start`, from
+    /// the absolute numbers an export holds (docs/export.md, so a runner
+    /// computes the same one; at the defaults from == to), and the warnings
+    /// of a per-axis map where an axis barely moves.
+    fn mapping_to(
+        &self,
+        start: Vec3,
+        goal: Vec3,
+        scaling: Scaling,
+    ) -> Result<(Mapping, Vec<String>)> {
+        let (own_start, own_goal) = (self.start_abs(), self.goal_abs());
+        let from: Vec3 = Vec3::from_fn(|a, _| own_goal[a] - own_start[a]);
+        let to: Vec3 = Vec3::from_fn(|a, _| goal[a] - start[a]);
+        let mapping = Mapping::between(from, to, scaling).map_err(|e| match e {
+            Error::InvalidSetting(m) => Error::InvalidSetting(format!("{}: {m}", self.name)),
+            other => other,
+        })?;
+        let mut warnings = Vec::new();
+        if let (Scaling::Paper, Mapping::Diagonal(factors)) = (scaling, mapping) {
+            let extent = self.extent;
+            for (a, axis) in ["x", "y", "z"].iter().enumerate() {
+                // Only where the factor does something.
+                if from[a].abs() < 0.05 * extent && (factors[a] - 1.0).abs() > 1e-6
+                    || from[a].abs() < 1e-9 && to[a].abs() >= 1e-9
+                {
+                    warnings.push(format!(
+                        "{}: start and goal differ by {:.1} mm on {axis}, under 5 % of the \
+                         motion's {:.0} mm; per-axis scaling {} there (try --scaling frame)",
+                        self.name,
+                        from[a].abs() * 1e3,
+                        extent * 1e3,
+                        if from[a].abs() < 1e-9 {
+                            "leaves that axis's forcing term unscaled".to_owned()
+                        } else {
+                            format!("multiplies that axis's forcing term by {:.3}", factors[a])
+                        }
+                    ));
+                }
+            }
+        }
+        Ok((mapping, warnings))
+    }
+
+    /// An error when any of the run's numbers overflowed.
+    fn check_finite(&self, rows: [&[Vec3]; 4], duration: f64) -> Result<()> {
+        let finite = |rows: &[Vec3]| {
+            rows.iter()
+                .all(|r| r.x.is_finite() && r.y.is_finite() && r.z.is_finite())
+        };
+        if rows.iter().all(|r| finite(r)) {
+            return Ok(());
+        }
+        Err(Error::InvalidSetting(format!(
+            "{}: the motion diverges at D/M {} and K/M {} over {duration} s (its numbers \
+             overflow): nothing to run or export",
+            self.name, self.dm, self.km
+        )))
+    }
+
+    /// The orientation's run at the target's start and goal orientations;
+    /// an error when they are given without an orientation to run.
+    fn orientation_rollout(&self, target: &Target) -> Result<Option<OrientationRollout>> {
+        match &self.orientation {
+            Some(o) => Ok(Some(
+                o.rollout(target.start_orientation, target.goal_orientation),
+            )),
+            None if target.start_orientation.is_some() || target.goal_orientation.is_some() => {
+                Err(Error::InvalidSetting(format!(
+                    "{}: no orientation to run to a new start or goal orientation (its \
+                     recording has none, or the skill of several demos)",
+                    self.name
+                )))
+            }
+            None => Ok(None),
+        }
     }
 
     /// Per-time SD (N - 1) of the members' positions at the target.
@@ -413,6 +414,37 @@ pub(crate) fn check_gains(dm: f64, km: f64) -> Result<()> {
                 "{name} must be a positive number, got {v}"
             )));
         }
+    }
+    Ok(())
+}
+
+/// An error naming the argument at fault when the start or goal is not
+/// finite, the duration is out of range, or the goal equals the start.
+fn check_target(start: Vec3, goal: Vec3, duration: f64) -> Result<()> {
+    for (what, v) in [("--start", start), ("--goal", goal)] {
+        if v.iter().any(|c| !c.is_finite()) {
+            return Err(Error::InvalidSetting(format!(
+                "the {} ({what}) must be three finite numbers, got {v:?}",
+                what.trim_start_matches('-')
+            )));
+        }
+    }
+    if !(duration.is_finite() && duration > 0.0) {
+        return Err(Error::InvalidSetting(format!(
+            "the duration (--duration) must be a positive number of seconds, got {duration}"
+        )));
+    }
+    if !(MIN_DURATION_S..=MAX_DURATION_S).contains(&duration) {
+        return Err(Error::InvalidSetting(format!(
+            "the duration (--duration) must be between {MIN_DURATION_S} s and \
+             {MAX_DURATION_S} s, got {duration}"
+        )));
+    }
+    if start == goal {
+        return Err(Error::InvalidSetting(format!(
+            "the goal (--goal) equals the start (--start), {start:?}: a point-to-point \
+             motion needs them apart"
+        )));
     }
     Ok(())
 }

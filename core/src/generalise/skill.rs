@@ -60,17 +60,7 @@ impl Skill {
                     .into(),
             ));
         }
-        let mappings: Vec<Mapping> = parts
-            .iter()
-            .map(|p| {
-                let own = Vec3::from_fn(|a, _| p.goal[a] - p.y0[a]);
-                Mapping::between(own, displacement, scaling).map_err(|e| match e {
-                    Error::InvalidSetting(m) => Error::InvalidSetting(format!("{}: {m}", p.name)),
-                    other => other,
-                })
-            })
-            .collect::<Result<_>>()?;
-        let n = parts[0].len();
+        let mappings = mappings(&parts, displacement, scaling)?;
         let members: Vec<(Vec<Vec3>, Vec3)> = parts
             .iter()
             .zip(&mappings)
@@ -79,48 +69,9 @@ impl Skill {
                 (f, m.apply(p.v0))
             })
             .collect();
-        let mut mean = vec![Vec3::zeros(); n];
-        for (f, _) in &members {
-            for (acc, v) in mean.iter_mut().zip(f) {
-                for a in 0..3 {
-                    acc[a] += v[a];
-                }
-            }
-        }
-        for v in &mut mean {
-            *v = v.map(|c| c / nf);
-        }
-        let dt = 1.0 / (n - 1) as f64;
-        let dt2 = dt * dt;
-        let mut forcing_sd = vec![Vec3::zeros(); n];
-        if count > 1 {
-            for (f, _) in &members {
-                for ((acc, v), m) in forcing_sd.iter_mut().zip(f).zip(&mean) {
-                    for a in 0..3 {
-                        let e = (v[a] - m[a]) / dt2;
-                        acc[a] += e * e;
-                    }
-                }
-            }
-            for v in &mut forcing_sd {
-                *v = v.map(|c| (c / (nf - 1.0)).sqrt());
-            }
-        }
+        let (mean, forcing_sd) = mean_and_sd(&members, nf);
         let v0 = mean3(members.iter().map(|m| m.1), nf);
-        let b = parts[0].weights[0].len();
-        let weights: [Vec<f64>; 3] = {
-            let mut w = [vec![0.0; b], vec![0.0; b], vec![0.0; b]];
-            for (p, m) in parts.iter().zip(&mappings) {
-                for j in 0..b {
-                    let mapped =
-                        m.apply(Vec3::new(p.weights[0][j], p.weights[1][j], p.weights[2][j]));
-                    for a in 0..3 {
-                        w[a][j] += mapped[a];
-                    }
-                }
-            }
-            w.map(|axis| axis.into_iter().map(|v| v / nf).collect())
-        };
+        let weights = mean_weights(&parts, &mappings, nf);
         let duration = parts.iter().map(|p| p.duration_s).sum::<f64>() / nf;
         let primitive = Primitive {
             name: format!("skill ({count} demos)"),
@@ -146,6 +97,69 @@ impl Skill {
             scaling,
         })
     }
+}
+
+/// Each demo's map from its own displacement to the skill's.
+fn mappings(parts: &[Primitive], displacement: Vec3, scaling: Scaling) -> Result<Vec<Mapping>> {
+    parts
+        .iter()
+        .map(|p| {
+            let own = Vec3::from_fn(|a, _| p.goal[a] - p.y0[a]);
+            Mapping::between(own, displacement, scaling).map_err(|e| match e {
+                Error::InvalidSetting(m) => Error::InvalidSetting(format!("{}: {m}", p.name)),
+                other => other,
+            })
+        })
+        .collect()
+}
+
+/// The members' mean mapped forcing term (scaled by dt^2, as a primitive
+/// keeps it) and its per-time sample SD (N - 1; zeros for one member).
+fn mean_and_sd(members: &[(Vec<Vec3>, Vec3)], nf: f64) -> (Vec<Vec3>, Vec<Vec3>) {
+    let n = members[0].0.len();
+    let mut mean = vec![Vec3::zeros(); n];
+    for (f, _) in members {
+        for (acc, v) in mean.iter_mut().zip(f) {
+            for a in 0..3 {
+                acc[a] += v[a];
+            }
+        }
+    }
+    for v in &mut mean {
+        *v = v.map(|c| c / nf);
+    }
+    let dt = 1.0 / (n - 1) as f64;
+    let dt2 = dt * dt;
+    let mut forcing_sd = vec![Vec3::zeros(); n];
+    if members.len() > 1 {
+        for (f, _) in members {
+            for ((acc, v), m) in forcing_sd.iter_mut().zip(f).zip(&mean) {
+                for a in 0..3 {
+                    let e = (v[a] - m[a]) / dt2;
+                    acc[a] += e * e;
+                }
+            }
+        }
+        for v in &mut forcing_sd {
+            *v = v.map(|c| (c / (nf - 1.0)).sqrt());
+        }
+    }
+    (mean, forcing_sd)
+}
+
+/// The members' mean LWR weights, each demo's mapped into the skill's frame.
+fn mean_weights(parts: &[Primitive], mappings: &[Mapping], nf: f64) -> [Vec<f64>; 3] {
+    let b = parts[0].weights[0].len();
+    let mut w = [vec![0.0; b], vec![0.0; b], vec![0.0; b]];
+    for (p, m) in parts.iter().zip(mappings) {
+        for j in 0..b {
+            let mapped = m.apply(Vec3::new(p.weights[0][j], p.weights[1][j], p.weights[2][j]));
+            for a in 0..3 {
+                w[a][j] += mapped[a];
+            }
+        }
+    }
+    w.map(|axis| axis.into_iter().map(|v| v / nf).collect())
 }
 
 /// The mean of `values` (their sum, in order, over `n`).

@@ -64,44 +64,17 @@ pub(crate) fn kernels(
         .zip(&own)
         .map(|(d, &di)| map(di, mean_d, &d.name))
         .collect::<Result<_, _>>()?;
-    let n = demos.first().map_or(0, PreparedDemo::len);
+    let (parts, v0) = mean_parts(demos, projections, &to_skill);
+    let n = parts.len();
     let dt = 1.0 / (n.max(2) - 1) as f64;
-    let dt2 = dt * dt;
-    // The skill's three gain-linear parts, times dt^2, and its v0 dt.
-    let mut parts = vec![[Vec3::zeros(); 3]; n];
-    let mut v0 = Vec3::zeros();
-    for ((proj, q), demo) in projections.iter().zip(&to_skill).zip(demos) {
-        for (acc, fk) in parts.iter_mut().zip(&proj.f) {
-            for (c, acc_c) in acc.iter_mut().enumerate() {
-                let mapped = q.apply(Vec3::from_fn(|ax, _| fk[ax][c] * dt2));
-                *acc_c += mapped;
-            }
-        }
-        v0 += q.apply(demo.yd[0]);
-    }
-    for acc in &mut parts {
-        for c in acc.iter_mut() {
-            *c = c.map(|v| v / nf);
-        }
-    }
-    let v0 = v0.map(|v| v / nf);
     let back: Vec<Mapping> = demos
         .iter()
         .zip(&own)
         .map(|(demo, &di)| map(mean_d, di, &demo.name))
         .collect::<Result<_, _>>()?;
     // Frame-independent maps are s R: each demo's error is s |z - T|.
-    let similar: Option<Vec<f64>> = (mode == SkillMode::Frame).then(|| {
-        back.iter()
-            .zip(&own)
-            .map(|(m, &di)| match m {
-                Mapping::Diagonal(d) => d[0],
-                Mapping::Matrix(_) => {
-                    crate::fit::mapping::norm(di) / crate::fit::mapping::norm(mean_d)
-                }
-            })
-            .collect()
-    });
+    let similar: Option<Vec<f64>> =
+        (mode == SkillMode::Frame).then(|| frame_scales(&back, &own, mean_d));
     let targets: Vec<Vec<[f64; 3]>> = demos
         .iter()
         .map(|d| {
@@ -121,4 +94,46 @@ pub(crate) fn kernels(
         std::array::from_fn(|ax| v0[ax] * dt),
     );
     Ok(SkillKernel::new(mean, &back, &targets, similar.as_deref()))
+}
+
+/// The skill's three gain-linear parts of the forcing term per step (times
+/// dt^2), the mean of the demos' mapped into the mean frame, and its mean
+/// mapped initial velocity.
+fn mean_parts(
+    demos: &[PreparedDemo],
+    projections: &[Projections],
+    to_skill: &[Mapping],
+) -> (Vec<[Vec3; 3]>, Vec3) {
+    let nf = demos.len() as f64;
+    let n = demos.first().map_or(0, PreparedDemo::len);
+    let dt = 1.0 / (n.max(2) - 1) as f64;
+    let dt2 = dt * dt;
+    let mut parts = vec![[Vec3::zeros(); 3]; n];
+    let mut v0 = Vec3::zeros();
+    for ((proj, q), demo) in projections.iter().zip(to_skill).zip(demos) {
+        for (acc, fk) in parts.iter_mut().zip(&proj.f) {
+            for (c, acc_c) in acc.iter_mut().enumerate() {
+                let mapped = q.apply(Vec3::from_fn(|ax, _| fk[ax][c] * dt2));
+                *acc_c += mapped;
+            }
+        }
+        v0 += q.apply(demo.yd[0]);
+    }
+    for acc in &mut parts {
+        for c in acc.iter_mut() {
+            *c = c.map(|v| v / nf);
+        }
+    }
+    (parts, v0.map(|v| v / nf))
+}
+
+/// The scale `s` of each frame-independent map back to a demo (`s R`).
+fn frame_scales(back: &[Mapping], own: &[Vec3], mean_d: Vec3) -> Vec<f64> {
+    back.iter()
+        .zip(own)
+        .map(|(m, &di)| match m {
+            Mapping::Diagonal(d) => d[0],
+            Mapping::Matrix(_) => crate::fit::mapping::norm(di) / crate::fit::mapping::norm(mean_d),
+        })
+        .collect()
 }

@@ -8,11 +8,12 @@
 use std::collections::BTreeMap;
 
 use crate::error::{Error, Location, Result};
-use crate::geom::{Quat, Vec3};
-use crate::load::decode::{ChannelSchema, MessageDecoder, decoder_for};
-use crate::load::demo::{RawDemo, TimeSource};
-use crate::load::options::{LoadOptions, UpAxis};
-use crate::load::orientation_check::OrientationCounts;
+use crate::load::decode::{ChannelSchema, MessageDecoder, PoseSample, decoder_for};
+use crate::load::demo::RawDemo;
+use crate::load::options::LoadOptions;
+use crate::load::streams::{
+    Keyed, Stream, cut_short, finish_stream, in_fixed_frames, unmatched_frames,
+};
 
 /// What one file gave.
 #[derive(Clone, Debug, Default)]
@@ -34,21 +35,6 @@ const ZSTD_MAGIC: [u8; 4] = [0x28, 0xB5, 0x2F, 0xFD];
 /// The most keys (TF frames) remembered to name when `--frame` matches none.
 const KEYS_NAMED: usize = 64;
 
-/// One demo being collected: a topic, or one key of a multi-pose topic.
-#[derive(Default)]
-pub(crate) struct Stream {
-    /// Its samples are TF transforms (they have a parent frame).
-    tf: bool,
-    stamps: Vec<Option<i64>>,
-    log_times: Vec<i64>,
-    positions: Vec<Vec3>,
-    /// Each sample's orientation, already in dmpscope's z-up frame; `None`
-    /// where the message has none or an unusable one.
-    orientations: Vec<Option<Quat>>,
-    /// What its orientations say about themselves.
-    turns: OrientationCounts,
-}
-
 /// One stream of messages: the channels of one topic and schema (a merged
 /// recording declares a topic again on a new channel).
 pub(crate) struct Channel {
@@ -67,6 +53,33 @@ pub(crate) struct Channel {
     /// The streams of multi-pose messages, by key (looked up without
     /// allocating; a key is copied once, when first seen).
     keyed: BTreeMap<String, Stream>,
+}
+
+impl Channel {
+    /// A channel of `ch` read by `decoder`, named by its dmpscope metadata
+    /// where it has one.
+    fn new(
+        ch: &mcap::records::Channel,
+        decoder: Box<dyn MessageDecoder>,
+        regenerated: bool,
+    ) -> Self {
+        Self {
+            topic: ch.topic.clone(),
+            name: ch.metadata.get(crate::load::formats::NAME_KEY).map(|n| {
+                if regenerated {
+                    format!("{n} (regenerated)")
+                } else {
+                    n.clone()
+                }
+            }),
+            decoder,
+            cdr: ch.message_encoding == "cdr",
+            compressed: 0,
+            messages: 0,
+            unkeyed: Stream::default(),
+            keyed: BTreeMap::new(),
+        }
+    }
 }
 
 impl Channel {
@@ -166,32 +179,8 @@ impl<'o> Collector<'o> {
             .get(crate::load::formats::ROLE_KEY)
             .map(String::as_str)
             == Some(crate::load::formats::ROLE_REGENERATED);
-        let asked = |t: &str| {
-            self.options
-                .streams
-                .topics
-                .iter()
-                .any(|p| crate::load::options::matches_stream(p, t))
-        };
-        let exported_trajectory = ch
-            .metadata
-            .get(crate::load::formats::ROLE_KEY)
-            .map(String::as_str)
-            == Some(crate::load::formats::ROLE_TRAJECTORY);
-        if exported_trajectory {
-            self.skipped.push((
-                ch.topic.clone(),
-                format!("a trajectory dmpscope exported ({name}), not a demonstration"),
-            ));
-            self.channels.insert(ch.id, None);
-            return Ok(());
-        }
-        if regenerated && !asked(&ch.topic) {
-            self.skipped.push((
-                ch.topic.clone(),
-                "a path dmpscope regenerated, not a demonstration; --topic '/regen/*' loads it"
-                    .to_owned(),
-            ));
+        if let Some(why) = self.not_a_demo(&ch, name, regenerated) {
+            self.skipped.push((ch.topic.clone(), why));
             self.channels.insert(ch.id, None);
             return Ok(());
         }
@@ -219,27 +208,42 @@ impl<'o> Collector<'o> {
             }
         };
         let entry = decoder.map(|decoder| {
-            self.streams.push(Channel {
-                topic: ch.topic.clone(),
-                name: ch.metadata.get(crate::load::formats::NAME_KEY).map(|n| {
-                    if regenerated {
-                        format!("{n} (regenerated)")
-                    } else {
-                        n.clone()
-                    }
-                }),
-                decoder,
-                cdr: ch.message_encoding == "cdr",
-                compressed: 0,
-                messages: 0,
-                unkeyed: Stream::default(),
-                keyed: BTreeMap::new(),
-            });
+            self.streams.push(Channel::new(&ch, decoder, regenerated));
             self.by_topic.insert(merge_key, self.streams.len() - 1);
             self.streams.len() - 1
         });
         self.channels.insert(ch.id, entry);
         Ok(())
+    }
+
+    /// Why a channel that dmpscope wrote is not a demonstration (an
+    /// exported trajectory; a regenerated path not asked for by `--topic`).
+    fn not_a_demo(
+        &self,
+        ch: &mcap::records::Channel,
+        name: &str,
+        regenerated: bool,
+    ) -> Option<String> {
+        let exported_trajectory = ch
+            .metadata
+            .get(crate::load::formats::ROLE_KEY)
+            .map(String::as_str)
+            == Some(crate::load::formats::ROLE_TRAJECTORY);
+        if exported_trajectory {
+            return Some(format!(
+                "a trajectory dmpscope exported ({name}), not a demonstration"
+            ));
+        }
+        let asked = self
+            .options
+            .streams
+            .topics
+            .iter()
+            .any(|p| crate::load::options::matches_stream(p, &ch.topic));
+        (regenerated && !asked).then(|| {
+            "a path dmpscope regenerated, not a demonstration; --topic '/regen/*' loads it"
+                .to_owned()
+        })
     }
 
     pub(crate) fn message(
@@ -266,33 +270,21 @@ impl<'o> Collector<'o> {
         }
         let index = channel.messages;
         channel.messages += 1;
-        let inflated;
-        let data = if channel.cdr && data.starts_with(&ZSTD_MAGIC) {
+        let data: std::borrow::Cow<'_, [u8]> = if channel.cdr && data.starts_with(&ZSTD_MAGIC) {
             channel.compressed += 1;
-            match zstd::stream::decode_all(data) {
-                Ok(bytes) => {
-                    inflated = bytes;
-                    inflated.as_slice()
-                }
-                Err(e) => {
+            match inflate(data) {
+                Ok(bytes) => bytes.into(),
+                Err(reason) => {
                     self.pending = Some(Error::Decode {
                         at: Location::file(label).topic(&channel.topic).sample(index),
-                        reason: format!(
-                            "the message is zstd-compressed (rosbag2 message compression) but \
-                             does not decompress ({e}); `ros2 bag decompress` writes an \
-                             uncompressed copy"
-                        ),
+                        reason,
                     });
                     return Ok(());
                 }
             }
         } else {
-            data
+            data.into()
         };
-        let keys_seen = &mut self.keys_seen;
-        let tf = &mut self.tf;
-        let log_time = i64::try_from(header.log_time).unwrap_or(i64::MAX);
-        let mut bad: Option<(Option<String>, usize)> = None;
         let Channel {
             topic,
             decoder,
@@ -300,65 +292,19 @@ impl<'o> Collector<'o> {
             keyed,
             ..
         } = channel;
-        let is_static = topic.ends_with("tf_static");
-        let decoded = decoder.decode(data, &mut |sample| {
-            if let (Some(buffer), Some(parent), Some(child)) =
-                (tf.as_mut(), &sample.parent, &sample.key)
-                && sample
-                    .position
-                    .iter()
-                    .chain(sample.orientation.iter().flatten())
-                    .all(|v| v.is_finite())
-            {
-                buffer.add(
-                    parent,
-                    child,
-                    sample.stamp_ns.unwrap_or(log_time),
-                    sample.position,
-                    sample.orientation.unwrap_or([0.0; 4]),
-                    is_static,
-                );
-            }
-            if let Some(k) = &sample.key
-                && !options.frames.is_empty()
-            {
-                if !keys_seen.contains(k.as_ref()) && keys_seen.len() < KEYS_NAMED {
-                    keys_seen.insert(k.clone().into_owned());
-                }
-                if !options.frames.iter().any(|f| f == k) {
-                    return;
-                }
-            }
-            if let Some(axis) = sample.position.iter().position(|v| !v.is_finite()) {
-                bad.get_or_insert((sample.key.map(|k| k.into_owned()), axis));
-                return;
-            }
-            let stream = match sample.key {
-                None => &mut *unkeyed,
-                Some(k) => {
-                    if !keyed.contains_key(k.as_ref()) {
-                        keyed.insert(k.clone().into_owned(), Stream::default());
-                    }
-                    match keyed.get_mut(k.as_ref()) {
-                        Some(s) => s,
-                        None => return,
-                    }
-                }
-            };
-            stream.tf |= sample.parent.is_some();
-            stream.stamps.push(sample.stamp_ns);
-            stream.log_times.push(log_time);
-            stream
-                .positions
-                .push(options.up.to_z_up(sample.position).into());
-            let orientation = sample.orientation.and_then(crate::geom::quat_from_xyzw);
-            stream
-                .turns
-                .record(index, sample.orientation, orientation.is_some());
-            stream
-                .orientations
-                .push(orientation.map(|q| options.up.orientation_to_z_up(q)));
-        });
+        let mut sink = Sink {
+            options,
+            keys_seen: &mut self.keys_seen,
+            tf: self.tf.as_mut(),
+            log_time: i64::try_from(header.log_time).unwrap_or(i64::MAX),
+            is_static: topic.ends_with("tf_static"),
+            index,
+            unkeyed,
+            keyed,
+            bad: None,
+        };
+        let decoded = decoder.decode(&data, &mut |sample| sink.take(sample));
+        let bad = sink.bad;
         let at = Location::file(label);
         if let Err(reason) = decoded {
             self.pending = Some(Error::Decode {
@@ -392,43 +338,18 @@ impl<'o> Collector<'o> {
         let file_name = std::path::Path::new(label)
             .file_name()
             .map_or_else(|| label.to_owned(), |n| n.to_string_lossy().into_owned());
-        let mut notes = Vec::new();
-        let mut streams: Vec<(String, Option<String>, Stream)> = Vec::new();
-        let mut names: BTreeMap<String, String> = BTreeMap::new();
-        for channel in c.streams {
-            if channel.compressed > 0 {
-                notes.push(format!(
-                    "{label}: {}: {} messages were zstd-compressed (rosbag2 message compression): \
-                     decompressed while reading",
-                    channel.topic, channel.compressed
-                ));
-            }
-            if let Some(name) = channel.name {
-                names.insert(channel.topic.clone(), name);
-            }
-            streams.push((channel.topic.clone(), None, channel.unkeyed));
-            for (key, stream) in channel.keyed {
-                streams.push((channel.topic.clone(), Some(key), stream));
-            }
-        }
-        streams.sort_by(|a, b| (&a.0, &a.1).cmp(&(&b.0, &b.1)));
-        let mut lost = Vec::new();
-        if let (Some(fixed), Some(buffer)) = (&options.fixed_frame, c.tf.as_mut()) {
-            streams.retain_mut(|(topic, key, s)| match key {
-                Some(k) if s.tf => match in_fixed_frame(buffer, fixed, k, s, options.up) {
-                    Ok(None) => true,
-                    Ok(Some(note)) => {
-                        warnings.push(format!("{label}: {topic}:{k}: {note}"));
-                        true
-                    }
-                    Err(why) => {
-                        lost.push(format!("{topic}:{k}: not expressed in {fixed}: {why}"));
-                        false
-                    }
-                },
-                _ => true,
-            });
-        }
+        let (mut streams, names, notes) = gather(label, c.streams);
+        let lost = match (&options.fixed_frame, c.tf.as_mut()) {
+            (Some(fixed), Some(buffer)) => in_fixed_frames(
+                &mut streams,
+                buffer,
+                fixed,
+                options.up,
+                label,
+                &mut warnings,
+            ),
+            _ => Vec::new(),
+        };
         let mut demos: Vec<RawDemo> = Vec::new();
         for (topic, key, s) in streams {
             if s.positions.is_empty() {
@@ -452,26 +373,7 @@ impl<'o> Collector<'o> {
         }
         let mut skipped = c.skipped;
         skipped.sort();
-        let unmatched: Vec<&String> = options
-            .frames
-            .iter()
-            .filter(|f| {
-                !demos
-                    .iter()
-                    .any(|d| d.topic.rsplit_once(':').is_some_and(|(_, k)| k == *f))
-            })
-            .collect();
-        if !unmatched.is_empty() && !c.keys_seen.is_empty() {
-            let names: Vec<&str> = c.keys_seen.iter().map(String::as_str).collect();
-            let what = format!(
-                "--frame {} matches no frame here; the frames are: {}",
-                unmatched
-                    .iter()
-                    .map(|f| f.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                names.join(", ")
-            );
+        if let Some(what) = unmatched_frames(&options.frames, &demos, &c.keys_seen) {
             if demos.is_empty() {
                 return Err(Error::Source {
                     path: label.to_owned(),
@@ -506,83 +408,122 @@ impl<'o> Collector<'o> {
     }
 }
 
-/// Re-expresses a TF stream in `fixed` (method.md section 13): each sample
-/// becomes the frame's origin and orientation in `fixed` at its stamp. Gives a note when
-/// transforms were held past their recorded span.
-fn in_fixed_frame(
-    buffer: &mut crate::load::tf::TfBuffer,
-    fixed: &str,
-    frame: &str,
-    s: &mut Stream,
-    up: UpAxis,
-) -> std::result::Result<Option<String>, String> {
-    let mut held = 0;
-    for i in 0..s.positions.len() {
-        let stamp = s.stamps[i].unwrap_or(s.log_times[i]);
-        let (p, q, h) = buffer.pose_in(fixed, frame, stamp)?;
-        held += usize::from(h);
-        s.positions[i] = up.to_z_up(p).into();
-        s.orientations[i] = crate::geom::quat_from_xyzw(q).map(|q| up.orientation_to_z_up(q));
-    }
-    Ok((held > 0).then(|| {
+/// A message compressed by rosbag2's message compression (zstd), inflated.
+fn inflate(data: &[u8]) -> std::result::Result<Vec<u8>, String> {
+    zstd::stream::decode_all(data).map_err(|e| {
         format!(
-            "{held} samples lie outside the recorded span of a transform to {fixed}: the \
-             nearest transform was held there (tf2 would refuse them)"
+            "the message is zstd-compressed (rosbag2 message compression) but does not \
+             decompress ({e}); `ros2 bag decompress` writes an uncompressed copy"
         )
-    }))
+    })
 }
 
-/// The streams a truncated file cut short: those still sending when it
-/// ends (their last message within max(1 s, 10 of their intervals) of the
-/// file's last one).
-fn cut_short(demos: &[RawDemo]) -> String {
-    let last = |d: &RawDemo| d.stamps_ns.iter().copied().max();
-    let Some(end) = demos.iter().filter_map(last).max() else {
-        return String::new();
-    };
-    let names: Vec<String> = demos
-        .iter()
-        .filter(|d| {
-            let h = crate::load::demo::median(&crate::load::demo::stamp_intervals_s(
-                &d.sorted_unique().0,
-            ));
-            let window = (1.0f64).max(10.0 * h);
-            last(d).is_some_and(|t| (end - t) as f64 * 1e-9 <= window)
-        })
-        .map(|d| format!("{} ({} samples)", d.topic, d.stamps_ns.len()))
-        .collect();
-    if names.is_empty() {
-        String::new()
-    } else {
-        format!("; cut short: {}", names.join(", "))
-    }
-}
-
-/// Chooses the time source of one stream (method.md section 2.1): header
-/// stamps, unless one is missing or all are zero, then log time.
-fn finish_stream(
+/// Every channel's streams (keyed ones after their channel's own), sorted
+/// by topic and key; the names dmpscope's own exports gave them; a note
+/// per channel whose messages were compressed.
+fn gather(
     label: &str,
-    file_name: &str,
-    topic: String,
-    key: Option<String>,
-    s: Stream,
-) -> RawDemo {
-    let stamps: Option<Vec<i64>> = s.stamps.iter().copied().collect();
-    let (stamps_ns, time_source) = match stamps {
-        Some(v) if v.iter().any(|&t| t != 0) => (v, TimeSource::HeaderStamp),
-        _ => (s.log_times, TimeSource::LogTime),
-    };
-    let source = match key {
-        Some(k) => format!("{topic}:{k}"),
-        None => topic,
-    };
-    RawDemo {
-        name: format!("{file_name}:{source}"),
-        file: label.to_owned(),
-        topic: source,
-        stamps_ns,
-        positions: s.positions,
-        orientations: s.orientations.into_iter().collect(),
-        time_source,
+    channels: Vec<Channel>,
+) -> (Vec<Keyed>, BTreeMap<String, String>, Vec<String>) {
+    let mut notes = Vec::new();
+    let mut streams: Vec<Keyed> = Vec::new();
+    let mut names: BTreeMap<String, String> = BTreeMap::new();
+    for channel in channels {
+        if channel.compressed > 0 {
+            notes.push(format!(
+                "{label}: {}: {} messages were zstd-compressed (rosbag2 message compression): \
+                 decompressed while reading",
+                channel.topic, channel.compressed
+            ));
+        }
+        if let Some(name) = channel.name {
+            names.insert(channel.topic.clone(), name);
+        }
+        streams.push((channel.topic.clone(), None, channel.unkeyed));
+        for (key, stream) in channel.keyed {
+            streams.push((channel.topic.clone(), Some(key), stream));
+        }
+    }
+    streams.sort_by(|a, b| (&a.0, &a.1).cmp(&(&b.0, &b.1)));
+    (streams, names, notes)
+}
+
+/// Where one message's samples go: the TF buffer, the stream of their key
+/// (or the channel's own), each position and orientation turned z-up.
+struct Sink<'a> {
+    options: &'a LoadOptions,
+    keys_seen: &'a mut std::collections::BTreeSet<String>,
+    tf: Option<&'a mut crate::load::tf::TfBuffer>,
+    log_time: i64,
+    is_static: bool,
+    /// The message's index on its channel.
+    index: usize,
+    unkeyed: &'a mut Stream,
+    keyed: &'a mut BTreeMap<String, Stream>,
+    /// The first sample with a non-finite position: its key and axis.
+    bad: Option<(Option<String>, usize)>,
+}
+
+impl Sink<'_> {
+    /// Takes one decoded sample.
+    fn take(&mut self, sample: PoseSample<'_>) {
+        let options = self.options;
+        if let (Some(buffer), Some(parent), Some(child)) =
+            (self.tf.as_deref_mut(), &sample.parent, &sample.key)
+            && sample
+                .position
+                .iter()
+                .chain(sample.orientation.iter().flatten())
+                .all(|v| v.is_finite())
+        {
+            buffer.add(
+                parent,
+                child,
+                sample.stamp_ns.unwrap_or(self.log_time),
+                sample.position,
+                sample.orientation.unwrap_or([0.0; 4]),
+                self.is_static,
+            );
+        }
+        if let Some(k) = &sample.key
+            && !options.frames.is_empty()
+        {
+            if !self.keys_seen.contains(k.as_ref()) && self.keys_seen.len() < KEYS_NAMED {
+                self.keys_seen.insert(k.clone().into_owned());
+            }
+            if !options.frames.iter().any(|f| f == k) {
+                return;
+            }
+        }
+        if let Some(axis) = sample.position.iter().position(|v| !v.is_finite()) {
+            self.bad
+                .get_or_insert((sample.key.map(|k| k.into_owned()), axis));
+            return;
+        }
+        let stream = match sample.key {
+            None => &mut *self.unkeyed,
+            Some(k) => {
+                if !self.keyed.contains_key(k.as_ref()) {
+                    self.keyed.insert(k.clone().into_owned(), Stream::default());
+                }
+                match self.keyed.get_mut(k.as_ref()) {
+                    Some(s) => s,
+                    None => return,
+                }
+            }
+        };
+        stream.tf |= sample.parent.is_some();
+        stream.stamps.push(sample.stamp_ns);
+        stream.log_times.push(self.log_time);
+        stream
+            .positions
+            .push(options.up.to_z_up(sample.position).into());
+        let orientation = sample.orientation.and_then(crate::geom::quat_from_xyzw);
+        stream
+            .turns
+            .record(self.index, sample.orientation, orientation.is_some());
+        stream
+            .orientations
+            .push(orientation.map(|q| options.up.orientation_to_z_up(q)));
     }
 }

@@ -47,32 +47,18 @@ pub fn load_csv(label: &str, text: &str) -> Result<RawDemo> {
             continue;
         }
         let row = stamps_ns.len();
-        let values =
-            parse_row(line, *width.get_or_insert_with(|| row_width(line))).map_err(|reason| {
-                Error::Decode {
-                    at: at().sample(row),
-                    reason: format!("line {}: {reason}", line_index + 1),
-                }
-            })?;
-        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-            return Err(Error::NonFinite {
+        let w = *width.get_or_insert_with(|| row_width(line));
+        let (values, t_ns) = data_row(line, w).map_err(|e| match e {
+            RowError::Decode(reason) => Error::Decode {
                 at: at().sample(row),
-                field: FIELDS[i],
-            });
-        }
-        let t_ns = (values[0] * 1e9).round();
-        // i64 spans about +-292 years of nanoseconds.
-        if t_ns.abs() >= 9.2e18 {
-            return Err(Error::Decode {
+                reason: format!("line {}: {reason}", line_index + 1),
+            },
+            RowError::NonFinite(field) => Error::NonFinite {
                 at: at().sample(row),
-                reason: format!(
-                    "line {}: t = {} s does not fit in nanoseconds",
-                    line_index + 1,
-                    values[0]
-                ),
-            });
-        }
-        stamps_ns.push(t_ns as i64);
+                field,
+            },
+        })?;
+        stamps_ns.push(t_ns);
         positions.push(Vec3::new(values[1], values[2], values[3]));
         if let (Some(8), [.., qx, qy, qz, qw]) = (width, &values[..]) {
             let q = quat_from_xyzw([*qx, *qy, *qz, *qw]);
@@ -116,6 +102,31 @@ pub fn load_csv(label: &str, text: &str) -> Result<RawDemo> {
         },
         time_source: TimeSource::HeaderStamp,
     })
+}
+
+/// Why a data row is not one.
+enum RowError {
+    /// Not a row of numbers of the file's width, or a time out of range.
+    Decode(String),
+    /// A NaN or infinite value in this field.
+    NonFinite(&'static str),
+}
+
+/// A data row's values and its stamp, `round(t * 1e9)` ns.
+fn data_row(line: &str, width: usize) -> std::result::Result<(Vec<f64>, i64), RowError> {
+    let values = parse_row(line, width).map_err(RowError::Decode)?;
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(RowError::NonFinite(FIELDS[i]));
+    }
+    let t_ns = (values[0] * 1e9).round();
+    // i64 spans about +-292 years of nanoseconds.
+    if t_ns.abs() >= 9.2e18 {
+        return Err(RowError::Decode(format!(
+            "t = {} s does not fit in nanoseconds",
+            values[0]
+        )));
+    }
+    Ok((values, t_ns as i64))
 }
 
 /// The width of the rows: 8 when the first data row has more than 4

@@ -126,6 +126,21 @@ pub fn dialog_extensions() -> Vec<&'static str> {
     out
 }
 
+/// The channel metadata key holding a demo's name: loading an export gives
+/// the demo back under it.
+pub const NAME_KEY: &str = "dmpscope.name";
+
+/// The channel metadata key saying what a path is (`demonstration`,
+/// `regenerated`); a regenerated path is not loaded as a demo.
+pub const ROLE_KEY: &str = "dmpscope.role";
+
+/// The role of a regenerated path.
+pub const ROLE_REGENERATED: &str = "regenerated";
+
+/// The role of an exported ROS trajectory (`nav_msgs/msg/Path`,
+/// `MultiDOFJointTrajectory`); never loaded as a demo.
+pub const ROLE_TRAJECTORY: &str = "trajectory";
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -171,18 +186,3 @@ mod tests {
         );
     }
 }
-
-/// The channel metadata key holding a demo's name: loading an export gives
-/// the demo back under it.
-pub const NAME_KEY: &str = "dmpscope.name";
-
-/// The channel metadata key saying what a path is (`demonstration`,
-/// `regenerated`); a regenerated path is not loaded as a demo.
-pub const ROLE_KEY: &str = "dmpscope.role";
-
-/// The role of a regenerated path.
-pub const ROLE_REGENERATED: &str = "regenerated";
-
-/// The role of an exported ROS trajectory (`nav_msgs/msg/Path`,
-/// `MultiDOFJointTrajectory`); never loaded as a demo.
-pub const ROLE_TRAJECTORY: &str = "trajectory";

@@ -21,5 +21,6 @@ pub mod orientation_check;
 pub mod rosbag1;
 pub mod rosbag2;
 pub mod source;
+pub mod streams;
 pub mod tf;
 pub mod units;

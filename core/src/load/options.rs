@@ -269,3 +269,20 @@ impl SegmentSettings {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn globs_match_topics_keys_and_wildcards() {
+        assert!(glob("/vive/*", "/vive/hand"));
+        assert!(glob("*hand?", "/left_hand1"));
+        assert!(!glob("/vive/*", "/tf"));
+        assert!(glob("*", ""));
+        assert!(matches_stream("/tf", "/tf:tracker"));
+        assert!(matches_stream("track*", "/tf:tracker"));
+        assert!(!matches_stream("/tf_static", "/tf:tracker"));
+        assert!(glob("/händ", "/händ"));
+    }
+}

@@ -36,7 +36,7 @@ pub enum SourceData<'a> {
 /// What one source gave: its demonstrations in load order (files by name,
 /// then topic and key), and what the user should be told.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct SourceDemos {
+pub struct SourceStreams {
     /// The demonstrations (streams, before [`crate::arrange::streams::load_source`] groups them).
     pub demos: Vec<RawDemo>,
     /// Topics skipped, a truncated file's lost tail, and the like.
@@ -53,7 +53,7 @@ pub fn load_streams(
     name: &str,
     data: SourceData<'_>,
     options: &LoadOptions,
-) -> Result<SourceDemos> {
+) -> Result<SourceStreams> {
     let mut loaded = read_streams(name, data, options)?;
     for demo in &mut loaded.demos {
         options.units.apply(demo);
@@ -61,7 +61,7 @@ pub fn load_streams(
     Ok(loaded)
 }
 
-fn read_streams(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Result<SourceDemos> {
+fn read_streams(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Result<SourceStreams> {
     match data {
         SourceData::Bytes(bytes) => match formats::detect(name, bytes).reader {
             Reader::Csv => {
@@ -94,7 +94,7 @@ fn read_streams(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Resu
     }
 }
 
-fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
+fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceStreams> {
     match rosbag2::classify(folder)? {
         Folder::Bag(files) => {
             let label = folder.display().to_string();
@@ -104,7 +104,7 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
             ))
         }
         Folder::Recordings { files, folders } => {
-            let mut out = SourceDemos::default();
+            let mut out = SourceStreams::default();
             let mut no_poses = Vec::new();
             for file in files {
                 let label = file.display().to_string();
@@ -178,7 +178,7 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceDemos> {
 /// first bytes) from its bytes, else MCAP, plain or compressed (rosbag2's
 /// reader tells them apart), which also says what a file of no known format
 /// is not.
-fn read_file(path: &Path, label: &str, options: &LoadOptions) -> Result<SourceDemos> {
+fn read_file(path: &Path, label: &str, options: &LoadOptions) -> Result<SourceStreams> {
     let io = |reason| Error::Io {
         file: label.to_owned(),
         reason,
@@ -211,7 +211,7 @@ fn folder_of_metadata(path: &Path) -> Option<&Path> {
     is_metadata.then(|| path.parent()).flatten()
 }
 
-fn csv_demo(name: &str, text: &str, options: &LoadOptions) -> Result<SourceDemos> {
+fn csv_demo(name: &str, text: &str, options: &LoadOptions) -> Result<SourceStreams> {
     let mut demo = load_csv(name, text)?;
     for p in &mut demo.positions {
         *p = options.up.to_z_up((*p).into()).into();
@@ -219,13 +219,13 @@ fn csv_demo(name: &str, text: &str, options: &LoadOptions) -> Result<SourceDemos
     for q in demo.orientations.iter_mut().flatten() {
         *q = options.up.orientation_to_z_up(*q);
     }
-    Ok(SourceDemos {
+    Ok(SourceStreams {
         demos: vec![demo],
-        ..SourceDemos::default()
+        ..SourceStreams::default()
     })
 }
 
-fn from_mcap(file: &str, loaded: Loaded) -> SourceDemos {
+fn from_mcap(file: &str, loaded: Loaded) -> SourceStreams {
     let each =
         |(topic, schema): &(String, String)| format!("{file}: skipped topic {topic} ({schema})");
     let mut notices: Vec<Notice> = if loaded.skipped.len() > SKIPPED_LISTED {
@@ -244,7 +244,7 @@ fn from_mcap(file: &str, loaded: Loaded) -> SourceDemos {
     };
     notices.extend(loaded.notes.into_iter().map(Notice::info));
     notices.extend(loaded.warnings.into_iter().map(Notice::warning));
-    SourceDemos {
+    SourceStreams {
         demos: loaded.demos,
         notices,
         skipped: loaded.skipped,

@@ -161,91 +161,47 @@ fn prepare_orientation(
 /// Prepares one demonstration (method.md sections 2.2-2.7).
 pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
     let sg = SavGol::new(settings.sg_window, settings.sg_order)?;
-    if settings.grid_points < 3 {
-        return Err(Error::InvalidSetting(format!(
-            "the integration grid needs at least 3 points, got {}",
-            settings.grid_points
-        )));
-    }
-    for (i, p) in raw.positions.iter().enumerate() {
-        if let Some(axis) = p.iter().position(|v| !v.is_finite()) {
-            return Err(Error::NonFinite {
-                at: Location::file(&raw.file).topic(&raw.topic).sample(i),
-                field: ["position.x", "position.y", "position.z"][axis],
-            });
-        }
-    }
+    check(raw, settings)?;
     let (stamps, positions) = raw.sorted_unique();
-    let min = sg.window();
     if stamps.len() < 2 {
         return Err(Error::TooFewSamples {
             demo: raw.name.clone(),
             n0: stamps.len(),
-            min,
+            min: sg.window(),
         });
     }
     let first = stamps[0];
     let t: Vec<f64> = stamps.iter().map(|s| (s - first) as f64 * 1e-9).collect();
     let total = t[t.len() - 1];
     let h = median(&stamp_intervals_s(&stamps));
-    let ratio = total / h;
-    if !ratio.is_finite() || ratio > MAX_RESAMPLED as f64 {
-        return Err(Error::BadTiming {
-            demo: raw.name.clone(),
-            reason: format!(
-                "duration {total} s over median interval {h} s would need {ratio:.0} resampled points \
-                 (at most {MAX_RESAMPLED}): the stamps have gaps far longer than the sampling interval"
-            ),
-        });
-    }
-    let n0 = ratio.round_ties_even() as usize + 1;
+    let n0 = uniform_points(raw, total, h)?;
     // A window given as a duration is known in samples only now.
-    let (sg, min) = match settings.sg_seconds {
-        None => (sg, min),
-        Some(_) => {
-            let sg = SavGol::new(
-                settings.window_at(total / (n0.max(2) - 1) as f64),
-                settings.sg_order,
-            )?;
-            let min = sg.window();
-            (sg, min)
-        }
+    let sg = match settings.sg_seconds {
+        None => sg,
+        Some(_) => SavGol::new(
+            settings.window_at(total / (n0.max(2) - 1) as f64),
+            settings.sg_order,
+        )?,
     };
-    if n0 < min {
+    if n0 < sg.window() {
         return Err(Error::TooFewSamples {
             demo: raw.name.clone(),
             n0,
-            min,
+            min: sg.window(),
         });
     }
     let grid_t = linspace(total, n0);
-    let spacing = total / (n0 - 1) as f64;
     let s = linspace(1.0, settings.grid_points);
     let query_t: Vec<f64> = s.iter().map(|s| s * total).collect();
-
-    let mut p0 = Vec3::zeros();
-    let mut cols: [[Vec<f64>; 3]; 4] = Default::default();
-    for axis in 0..3 {
-        let resampled = interp(&grid_t, &t, &column(&positions, axis));
-        p0[axis] = resampled[0];
-        let smooth = sg.apply(&resampled, spacing)?;
-        let shifted: Vec<f64> = resampled.iter().map(|v| v - p0[axis]).collect();
-        let smooth_shifted: Vec<f64> = smooth.value.iter().map(|v| v - p0[axis]).collect();
-        let vel: Vec<f64> = smooth.d1.iter().map(|v| v * total).collect();
-        let acc: Vec<f64> = smooth.d2.iter().map(|v| v * total * total).collect();
-        cols[0][axis] = interp(&query_t, &grid_t, &shifted);
-        cols[1][axis] = interp(&query_t, &grid_t, &smooth_shifted);
-        cols[2][axis] = interp(&query_t, &grid_t, &vel);
-        cols[3][axis] = interp(&query_t, &grid_t, &acc);
-    }
-    let grids = Grids {
+    let on = Grids {
         t: &t,
         uniform: &grid_t,
         unit: &query_t,
         sg: &sg,
         total,
     };
-    let orientation = prepare_orientation(raw, stamps.len(), &grids)?;
+    let (p0, cols) = smooth_axes(&positions, &on)?;
+    let orientation = prepare_orientation(raw, stamps.len(), &on)?;
     let [c_raw, c_y, c_yd, c_ydd] = cols;
     let y_raw = zip3(c_raw);
     let goal = y_raw[y_raw.len() - 1];
@@ -263,4 +219,65 @@ pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
         ydd: zip3(c_ydd),
         orientation,
     })
+}
+
+/// An error for a grid too small to integrate on, or a position that is
+/// not finite (naming its sample).
+fn check(raw: &RawDemo, settings: &PrepSettings) -> Result<()> {
+    if settings.grid_points < 3 {
+        return Err(Error::InvalidSetting(format!(
+            "the integration grid needs at least 3 points, got {}",
+            settings.grid_points
+        )));
+    }
+    for (i, p) in raw.positions.iter().enumerate() {
+        if let Some(axis) = p.iter().position(|v| !v.is_finite()) {
+            return Err(Error::NonFinite {
+                at: Location::file(&raw.file).topic(&raw.topic).sample(i),
+                field: ["position.x", "position.y", "position.z"][axis],
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The number of points of the uniform grid (section 2.3): the duration
+/// over the median interval, rounded, plus one; an error when the stamps
+/// would ask for more than [`MAX_RESAMPLED`].
+fn uniform_points(raw: &RawDemo, total: f64, h: f64) -> Result<usize> {
+    let ratio = total / h;
+    if !ratio.is_finite() || ratio > MAX_RESAMPLED as f64 {
+        return Err(Error::BadTiming {
+            demo: raw.name.clone(),
+            reason: format!(
+                "duration {total} s over median interval {h} s would need {ratio:.0} resampled points \
+                 (at most {MAX_RESAMPLED}): the stamps have gaps far longer than the sampling interval"
+            ),
+        });
+    }
+    Ok(ratio.round_ties_even() as usize + 1)
+}
+
+/// Each axis resampled uniformly, smoothed and differentiated, shifted to
+/// start at 0 and carried to the unit-time grid: the start `p0` and the
+/// columns of the raw, smoothed, velocity and acceleration paths.
+fn smooth_axes(positions: &[Vec3], on: &Grids<'_>) -> Result<(Vec3, [[Vec<f64>; 3]; 4])> {
+    let (total, grid_t, query_t) = (on.total, on.uniform, on.unit);
+    let spacing = total / (grid_t.len() - 1) as f64;
+    let mut p0 = Vec3::zeros();
+    let mut cols: [[Vec<f64>; 3]; 4] = Default::default();
+    for axis in 0..3 {
+        let resampled = interp(grid_t, on.t, &column(positions, axis));
+        p0[axis] = resampled[0];
+        let smooth = on.sg.apply(&resampled, spacing)?;
+        let shifted: Vec<f64> = resampled.iter().map(|v| v - p0[axis]).collect();
+        let smooth_shifted: Vec<f64> = smooth.value.iter().map(|v| v - p0[axis]).collect();
+        let vel: Vec<f64> = smooth.d1.iter().map(|v| v * total).collect();
+        let acc: Vec<f64> = smooth.d2.iter().map(|v| v * total * total).collect();
+        cols[0][axis] = interp(query_t, grid_t, &shifted);
+        cols[1][axis] = interp(query_t, grid_t, &smooth_shifted);
+        cols[2][axis] = interp(query_t, grid_t, &vel);
+        cols[3][axis] = interp(query_t, grid_t, &acc);
+    }
+    Ok((p0, cols))
 }

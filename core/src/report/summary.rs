@@ -374,116 +374,138 @@ impl Report {
         let (Some(d), Some(about)) = (&self.diagnostics, &self.diagnostics_about) else {
             return String::new();
         };
-        let mut s = String::new();
-        let n = d.demos.len();
-        let opt = |v: Option<f64>, prec: usize| {
-            v.map_or_else(|| "n/a".to_owned(), |v| format!("{v:.prec$}"))
-        };
-        let bad = d.inconsistent();
-        if bad.is_empty() {
-            let _ = writeln!(
-                s,
-                "consistent: no demo's share of S is above {:.0}/N",
-                crate::extract::diagnostics::INCONSISTENT_SHARE
-            );
-        } else {
-            let _ = writeln!(
-                s,
-                "inconsistent demos (share of S above {:.0}/N = {:.3}):",
-                crate::extract::diagnostics::INCONSISTENT_SHARE,
-                crate::extract::diagnostics::INCONSISTENT_SHARE / n as f64
-            );
-            for &i in &bad {
-                let dd = &d.demos[i];
-                let _ = writeln!(s, "  {}  share {}", dd.name, opt(dd.s_share, 3));
-            }
-        }
-        let verdict = if d.flat {
-            "FLAT: the data do not determine the gains"
-        } else {
-            "determined"
-        };
-        let _ = writeln!(
-            s,
-            "depth   = {}  ({verdict}; flat below {})",
-            opt(d.depth, 4),
-            crate::extract::diagnostics::balance::FLAT_DEPTH
-        );
-        let _ = writeln!(
-            s,
-            "k_ratio = {}  (k sum d / S at the optimum)",
-            opt(d.k_ratio, 4)
-        );
-        let _ = writeln!(
-            s,
-            "balanced k = {}  (median S / median sum d)",
-            opt(d.balanced_k, 4)
-        );
-        match &d.s_minimum {
-            Some(m) => {
-                let _ = writeln!(
-                    s,
-                    "S minimum: D/M {:.4}, K/M {:.4}, S {:.6}",
-                    m.dm, m.km, m.s
-                );
-            }
-            None => {
-                let _ = writeln!(s, "S minimum: n/a");
-            }
-        }
-        let g = about.grid;
-        let _ = writeln!(
-            s,
-            "\nper demo (leave-one-out and bootstrap on a {}x{} grid, same box):",
-            g.dm.n, g.km.n
-        );
-        let name_w = widest(d.demos.iter().map(|x| x.name.as_str()), 4);
-        let _ = writeln!(
-            s,
-            "{:<name_w$}  {:>7}  {:>10}  {:>10}  {:>9}  {:>7}",
-            "demo", "share", "LOO D/M", "LOO K/M", "LOO J", "on edge"
-        );
-        for dd in &d.demos {
-            let (dm, km, j, edge) = dd
-                .loo
-                .map_or(("-".into(), "-".into(), "-".into(), "-"), |l| {
-                    (
-                        format!("{:.3}", l.dm),
-                        format!("{:.3}", l.km),
-                        format!("{:.5}", l.j),
-                        if l.on_edge { "yes" } else { "no" },
-                    )
-                });
-            let _ = writeln!(
-                s,
-                "{}  {:>7}  {dm:>10}  {km:>10}  {j:>9}  {edge:>7}",
-                pad_right(&dd.name, name_w),
-                opt(dd.s_share, 3)
-            );
-        }
-        match &d.bootstrap {
-            Some(b) => {
-                let _ = writeln!(
-                    s,
-                    "\nbootstrap ({} resamples, seed {}): D/M {:.3} / {:.3} / {:.3}, K/M {:.3} / {:.3} / {:.3} (5/50/95 %), on an edge {:.0} %",
-                    b.n,
-                    b.seed,
-                    b.dm[0],
-                    b.dm[1],
-                    b.dm[2],
-                    b.km[0],
-                    b.km[1],
-                    b.km[2],
-                    b.on_edge_fraction * 100.0
-                );
-            }
-            None => {
-                let _ = writeln!(s, "\nbootstrap: n/a");
-            }
-        }
+        let mut s = consistency_text(d);
+        s.push_str(&figures_text(d));
+        s.push_str(&per_demo_text(d, about));
+        s.push_str(&bootstrap_text(d));
         for note in &about.notes {
             let _ = writeln!(s, "note: {note}");
         }
         s
+    }
+}
+
+/// A number with `prec` digits, or `n/a`.
+fn opt(v: Option<f64>, prec: usize) -> String {
+    v.map_or_else(|| "n/a".to_owned(), |v| format!("{v:.prec$}"))
+}
+
+/// The demos whose share of S is above the threshold, or that none is.
+fn consistency_text(d: &Diagnostics) -> String {
+    let mut s = String::new();
+    let n = d.demos.len();
+    let bad = d.inconsistent();
+    if bad.is_empty() {
+        let _ = writeln!(
+            s,
+            "consistent: no demo's share of S is above {:.0}/N",
+            crate::extract::diagnostics::INCONSISTENT_SHARE
+        );
+    } else {
+        let _ = writeln!(
+            s,
+            "inconsistent demos (share of S above {:.0}/N = {:.3}):",
+            crate::extract::diagnostics::INCONSISTENT_SHARE,
+            crate::extract::diagnostics::INCONSISTENT_SHARE / n as f64
+        );
+        for &i in &bad {
+            let dd = &d.demos[i];
+            let _ = writeln!(s, "  {}  share {}", dd.name, opt(dd.s_share, 3));
+        }
+    }
+    s
+}
+
+/// The depth and its verdict, k_ratio, the balanced k and S's minimum.
+fn figures_text(d: &Diagnostics) -> String {
+    let mut s = String::new();
+    let verdict = if d.flat {
+        "FLAT: the data do not determine the gains"
+    } else {
+        "determined"
+    };
+    let _ = writeln!(
+        s,
+        "depth   = {}  ({verdict}; flat below {})",
+        opt(d.depth, 4),
+        crate::extract::diagnostics::balance::FLAT_DEPTH
+    );
+    let _ = writeln!(
+        s,
+        "k_ratio = {}  (k sum d / S at the optimum)",
+        opt(d.k_ratio, 4)
+    );
+    let _ = writeln!(
+        s,
+        "balanced k = {}  (median S / median sum d)",
+        opt(d.balanced_k, 4)
+    );
+    match &d.s_minimum {
+        Some(m) => {
+            let _ = writeln!(
+                s,
+                "S minimum: D/M {:.4}, K/M {:.4}, S {:.6}",
+                m.dm, m.km, m.s
+            );
+        }
+        None => {
+            let _ = writeln!(s, "S minimum: n/a");
+        }
+    }
+    s
+}
+
+/// Each demo's share of S and its leave-one-out optimum.
+fn per_demo_text(d: &Diagnostics, about: &DiagAbout) -> String {
+    let mut s = String::new();
+    let g = about.grid;
+    let _ = writeln!(
+        s,
+        "\nper demo (leave-one-out and bootstrap on a {}x{} grid, same box):",
+        g.dm.n, g.km.n
+    );
+    let name_w = widest(d.demos.iter().map(|x| x.name.as_str()), 4);
+    let _ = writeln!(
+        s,
+        "{:<name_w$}  {:>7}  {:>10}  {:>10}  {:>9}  {:>7}",
+        "demo", "share", "LOO D/M", "LOO K/M", "LOO J", "on edge"
+    );
+    for dd in &d.demos {
+        let (dm, km, j, edge) = dd
+            .loo
+            .map_or(("-".into(), "-".into(), "-".into(), "-"), |l| {
+                (
+                    format!("{:.3}", l.dm),
+                    format!("{:.3}", l.km),
+                    format!("{:.5}", l.j),
+                    if l.on_edge { "yes" } else { "no" },
+                )
+            });
+        let _ = writeln!(
+            s,
+            "{}  {:>7}  {dm:>10}  {km:>10}  {j:>9}  {edge:>7}",
+            pad_right(&dd.name, name_w),
+            opt(dd.s_share, 3)
+        );
+    }
+    s
+}
+
+/// The bootstrap's percentiles of the optimum, or that there is none.
+fn bootstrap_text(d: &Diagnostics) -> String {
+    match &d.bootstrap {
+        Some(b) => format!(
+            "\nbootstrap ({} resamples, seed {}): D/M {:.3} / {:.3} / {:.3}, K/M {:.3} / {:.3} / {:.3} (5/50/95 %), on an edge {:.0} %\n",
+            b.n,
+            b.seed,
+            b.dm[0],
+            b.dm[1],
+            b.dm[2],
+            b.km[0],
+            b.km[1],
+            b.km[2],
+            b.on_edge_fraction * 100.0
+        ),
+        None => "\nbootstrap: n/a\n".to_owned(),
     }
 }

@@ -4,6 +4,7 @@
 //! (or, while there is no landscape, what the session is doing and what to
 //! do), and the 3D view below.
 
+use dmpscope_core::landscape::grid::Grid;
 use dmpscope_core::landscape::quantity;
 use dmpscope_core::landscape::quantity::Quantity;
 use dmpscope_core::report::presets::PAPER_PRESETS;
@@ -99,6 +100,8 @@ fn status(ui: &mut egui::Ui, status: &Status, height: f32) {
     });
 }
 
+/// The J map and the small maps beside it; keeps the operating point moved
+/// on them and the small map chosen.
 fn maps(
     ui: &mut egui::Ui,
     session: &Session,
@@ -113,20 +116,108 @@ fn maps(
         .diagnostics()
         .map(|d| d.cloud.iter().map(|o| (o.dm, o.km)).collect())
         .unwrap_or_default();
-    let n_km = grid.km.n;
-    let readout = |i: usize, j: usize| {
-        let idx = i * n_km + j;
-        (shown.j[idx], quantity::ALL.map(|q| shown.values(q)[idx]))
-    };
     let region = session
         .allowed()
         .map(|v| v.allowed.acceptable.mask.as_slice())
         .filter(|m| m.len() == grid.len());
-    let log_colour = s.log_colour;
-    let limit = s.a_peak_limit;
+    let data = MapsData {
+        shown,
+        grid,
+        markers: &markers,
+        cloud: &cloud,
+        region,
+        log_colour: s.log_colour,
+        limit: s.a_peak_limit,
+    };
     let mut op = s.op;
-    let [c_j, c_d, c_s, c_e, c_x] = &mut view.maps;
-    let mut map = |ui: &mut egui::Ui, cache, which: Map, side: f32| {
+    let layout = Layout::of(ui.available_width(), height, session, view.second_map);
+    let mut chosen = layout.shown;
+    lay_out_maps(ui, &data, &mut view.maps, &layout, &mut chosen, &mut op);
+    // Only the user's choice is kept (not what a layout showed instead).
+    if chosen != layout.shown {
+        view.second_map = chosen;
+    }
+    // The d_rot map is computed when it is first shown.
+    if chosen == Map::Quantity(Quantity::DRotSum) {
+        s.dmp.orientation_map = true;
+    }
+    s.op = op;
+}
+
+/// J on the left; on the right the small maps two by two or stacked, as
+/// `layout` says, the chosen one with its buttons.
+fn lay_out_maps(
+    ui: &mut egui::Ui,
+    data: &MapsData<'_>,
+    caches: &mut [heatmap::Cache; 5],
+    layout: &Layout,
+    chosen: &mut Map,
+    op: &mut (f64, f64),
+) {
+    let [c_j, c_d, c_s, c_e, c_x] = caches;
+    let mut map = |ui: &mut egui::Ui, cache: &mut heatmap::Cache, which: Map, side: f32| {
+        data.show(ui, cache, which, side, op);
+    };
+    ui.horizontal_top(|ui| {
+        ui.vertical(|ui| map(ui, c_j, Map::J, layout.big));
+        ui.vertical(|ui| match layout.quad {
+            Some(side) => {
+                ui.horizontal_top(|ui| {
+                    ui.vertical(|ui| map(ui, c_d, Map::Quantity(Quantity::DSum), side));
+                    ui.vertical(|ui| map(ui, c_s, Map::Quantity(Quantity::S), side));
+                });
+                ui.horizontal_top(|ui| {
+                    ui.vertical(|ui| map(ui, c_e, Map::Quantity(Quantity::ESum), side));
+                    ui.vertical(|ui| {
+                        choose(ui, &layout.others, chosen);
+                        map(ui, c_x, *chosen, side);
+                    });
+                });
+            }
+            None => {
+                map(ui, c_d, Map::Quantity(Quantity::DSum), layout.small);
+                choose(ui, &layout.others, chosen);
+                map(ui, c_s, *chosen, layout.small);
+            }
+        });
+    });
+}
+
+/// What every map shares: the landscape shown, its overlays, the colour
+/// scale and the a_peak limit.
+struct MapsData<'a> {
+    /// The landscape shown.
+    shown: &'a Shown,
+    /// Its grid.
+    grid: Grid,
+    /// The labelled markers.
+    markers: &'a [Marker],
+    /// The bootstrap optima, drawn on J.
+    cloud: &'a [(f64, f64)],
+    /// The acceptable region, where it fits the grid.
+    region: Option<&'a [bool]>,
+    /// Colour on a log scale.
+    log_colour: bool,
+    /// The a_peak limit, masking J.
+    limit: Option<f64>,
+}
+
+impl MapsData<'_> {
+    /// Shows map `which` (`side` pixels square); a click or drag on it moves `op`.
+    fn show(
+        &self,
+        ui: &mut egui::Ui,
+        cache: &mut heatmap::Cache,
+        which: Map,
+        side: f32,
+        op: &mut (f64, f64),
+    ) {
+        let (shown, limit) = (self.shown, self.limit);
+        let n_km = self.grid.km.n;
+        let readout = |i: usize, j: usize| {
+            let idx = i * n_km + j;
+            (shown.j[idx], quantity::ALL.map(|q| shown.values(q)[idx]))
+        };
         let on_j = which == Map::J;
         let title = match (which, limit) {
             (Map::J, Some(l)) => format!("{} (grey: a_peak > {l} m/s²)", which.title()),
@@ -144,52 +235,18 @@ fn maps(
                     Map::Quantity(q) => (1 << 63) | q.index() as u64,
                 },
             ),
-            grid,
-            log_colour,
+            grid: self.grid,
+            log_colour: self.log_colour,
             readout: &readout,
             mask: limit
                 .filter(|_| on_j)
                 .map(|l| (shown.values(Quantity::APeak), l)),
             iso_zeta: true,
-            cloud: if on_j { &cloud } else { &[] },
-            region,
+            cloud: if on_j { self.cloud } else { &[] },
+            region: self.region,
         };
-        heatmap::show(ui, cache, &input, &markers, &mut op, side);
-    };
-    let layout = Layout::of(ui.available_width(), height, session, view.second_map);
-    let mut chosen = layout.shown;
-    ui.horizontal_top(|ui| {
-        ui.vertical(|ui| map(ui, c_j, Map::J, layout.big));
-        ui.vertical(|ui| match layout.quad {
-            Some(side) => {
-                ui.horizontal_top(|ui| {
-                    ui.vertical(|ui| map(ui, c_d, Map::Quantity(Quantity::DSum), side));
-                    ui.vertical(|ui| map(ui, c_s, Map::Quantity(Quantity::S), side));
-                });
-                ui.horizontal_top(|ui| {
-                    ui.vertical(|ui| map(ui, c_e, Map::Quantity(Quantity::ESum), side));
-                    ui.vertical(|ui| {
-                        choose(ui, &layout.others, &mut chosen);
-                        map(ui, c_x, chosen, side);
-                    });
-                });
-            }
-            None => {
-                map(ui, c_d, Map::Quantity(Quantity::DSum), layout.small);
-                choose(ui, &layout.others, &mut chosen);
-                map(ui, c_s, chosen, layout.small);
-            }
-        });
-    });
-    // Only the user's choice is kept (not what a layout showed instead).
-    if chosen != layout.shown {
-        view.second_map = chosen;
+        heatmap::show(ui, cache, &input, self.markers, op, side);
     }
-    // The d_rot map is computed when it is first shown.
-    if chosen == Map::Quantity(Quantity::DRotSum) {
-        s.dmp.orientation_map = true;
-    }
-    s.op = op;
 }
 
 /// Where the maps go: J on the left; on the right, where the window is

@@ -12,11 +12,29 @@ pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let session = cx.session;
     let s = &mut *cx.settings;
     ui.heading("Gains");
+    k_ui(ui, s);
+    operating_point_ui(ui, s);
+    snap_buttons_ui(ui, session, s, &mut cx.view.preset_buttons);
+    let Some(x) = session.extraction() else {
+        no_optimum_ui(ui, session);
+        return;
+    };
+    extracted_ui(ui, session, x);
+    super::allowed::allowed_ui(ui, cx);
+    box_edge_ui(ui, x, &mut cx.settings.grid);
+}
+
+/// The k slider.
+fn k_ui(ui: &mut egui::Ui, s: &mut crate::session::Settings) {
     ui.horizontal(|ui| {
         let label = ui.label("k");
         ui.add(egui::Slider::new(&mut s.k, 0.0..=200.0).logarithmic(true))
             .labelled_by(label.id);
     });
+}
+
+/// The operating point typed: D/M and K/M, within the grid's box.
+fn operating_point_ui(ui: &mut egui::Ui, s: &mut crate::session::Settings) {
     let (dm_axis, km_axis) = (s.grid.dm, s.grid.km);
     ui.horizontal(|ui| {
         let label = ui.label("D/M");
@@ -34,10 +52,20 @@ pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         )
         .labelled_by(label.id);
     });
+}
+
+/// The buttons that snap the operating point to a preset or the optimum (their
+/// rectangles kept for the tests).
+fn snap_buttons_ui(
+    ui: &mut egui::Ui,
+    session: &crate::session::Session,
+    s: &mut crate::session::Settings,
+    preset_buttons: &mut std::collections::BTreeMap<&'static str, egui::Rect>,
+) {
     ui.horizontal_wrapped(|ui| {
         for p in PAPER_PRESETS {
             let button = ui.button(p.name);
-            cx.view.preset_buttons.insert(p.name, button.rect);
+            preset_buttons.insert(p.name, button.rect);
             if button.clicked() {
                 s.op = (p.dm, p.km);
             }
@@ -48,24 +76,33 @@ pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             s.op = (x.eval.dm, x.eval.km);
         }
     });
-    let Some(x) = session.extraction() else {
-        if session.extracting() {
-            ui.horizontal(|ui| {
-                ui.spinner();
-                ui.label("Extracting the optimum…");
-            });
-        } else if session.model().is_none() {
-            ui.weak("Extracted: needs demonstrations");
-        } else if let Some(e) = session.extraction_error() {
-            ui.colored_label(
-                Color32::from_rgb(240, 120, 100),
-                format!("Extraction failed: {e}"),
-            );
-        } else {
-            ui.label("Extracted: waiting for the full landscape");
-        }
-        return;
-    };
+}
+
+/// Why there is no optimum yet: extracting, no demos, a failure, or waiting.
+fn no_optimum_ui(ui: &mut egui::Ui, session: &crate::session::Session) {
+    if session.extracting() {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label("Extracting the optimum…");
+        });
+    } else if session.model().is_none() {
+        ui.weak("Extracted: needs demonstrations");
+    } else if let Some(e) = session.extraction_error() {
+        ui.colored_label(
+            Color32::from_rgb(240, 120, 100),
+            format!("Extraction failed: {e}"),
+        );
+    } else {
+        ui.label("Extracted: waiting for the full landscape");
+    }
+}
+
+/// The extracted optimum, or where J is least when it is flat.
+fn extracted_ui(
+    ui: &mut egui::Ui,
+    session: &crate::session::Session,
+    x: &dmpscope_core::Extraction,
+) {
     let flat = session.diagnostics().map(|d| d.diagnostics.flat);
     if flat == Some(true) {
         // No number is presented as extracted when J is flat.
@@ -80,8 +117,14 @@ pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             x.eval.dm, x.eval.km, x.eval.zeta, x.j
         ));
     }
-    super::allowed::allowed_ui(ui, cx);
-    let s = &mut *cx.settings;
+}
+
+/// On the box's edge: the warning and the button that widens the box that way.
+fn box_edge_ui(
+    ui: &mut egui::Ui,
+    x: &dmpscope_core::Extraction,
+    g: &mut dmpscope_core::landscape::grid::Grid,
+) {
     if x.on_edge() {
         ui.colored_label(
             Color32::from_rgb(240, 180, 80),
@@ -89,7 +132,6 @@ pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         );
         if ui.button("Widen the box 10x that way").clicked() {
             let e = x.edges;
-            let g = &mut s.grid;
             if e.dm_low {
                 g.dm.lo /= 10.0;
             }

@@ -65,33 +65,7 @@ impl Allowed {
         let k = extraction.k;
         let j_depth = depth(landscape, k, extraction.j);
         let j_flat = j_depth.is_none_or(|d| d < FLAT_DEPTH);
-        let n = model.demos().len();
-        let refusal = model.skill_refusal();
-        let e_depth = if refusal.is_some() {
-            None
-        } else {
-            e_depth(landscape)
-        };
-        let e_note = match refusal {
-            Some(why) => Some(format!("no skill error E: {why}")),
-            None if n < 2 => Some(
-                "with one demo E equals sum d: E needs two demos to say anything about \
-                 generalisation"
-                    .to_owned(),
-            ),
-            None => None,
-        };
-        let e_flat = n >= 2 && e_depth.is_some_and(|d| d < FLAT_DEPTH);
-        let e_range = refusal.is_none().then(|| {
-            landscape
-                .values(Quantity::ESum)
-                .iter()
-                .filter(|v| v.is_finite())
-                .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &v| {
-                    [lo.min(v), hi.max(v)]
-                })
-        });
-        let e_excess = refusal.is_none().then(|| excess(landscape)).flatten();
+        let e = EVerdict::of(model, landscape);
         let acceptable = Acceptable::new(landscape, k, extraction.j, settings.eps);
         let duration = mean_duration(model);
         let ctx = Context {
@@ -102,54 +76,16 @@ impl Allowed {
             limit: settings.a_peak_limit,
             duration,
         };
-        let (pick, pick_failure) = match settings.rule {
-            Some(rule) => match ctx.pick(rule) {
-                Ok(p) => (
-                    Some(p.with_why(format!("asked for: {}", rule.rule_text()))),
-                    None,
-                ),
-                Err(e) => (None, Some(e)),
-            },
-            None if !j_flat => {
-                let why = format!(
-                    "J is not flat (depth {} >= {FLAT_DEPTH}): the demos determine the gains; \
-                     {}{}",
-                    depth_text(j_depth),
-                    PickRule::Optimum.rule_text(),
-                    ctx.limited()
-                );
-                split(ctx.pick(PickRule::Optimum).map(|p| p.with_why(why)))
-            }
-            None => {
-                let why = format!(
-                    "J is flat (depth {} < {FLAT_DEPTH}): the demos allow a region of gains; \
-                     within it, {}{}",
-                    depth_text(j_depth),
-                    PickRule::Compliant.rule_text(),
-                    ctx.limited()
-                );
-                match ctx.pick(PickRule::Compliant) {
-                    Ok(p) => (Some(p.with_why(why)), None),
-                    Err(e) => {
-                        let why = format!(
-                            "J is flat (depth {}); {e}, so {}",
-                            depth_text(j_depth),
-                            PickRule::Critical.rule_text()
-                        );
-                        split(ctx.pick(PickRule::Critical).map(|p| p.with_why(why)))
-                    }
-                }
-            }
-        };
+        let (pick, pick_failure) = choose(&ctx, settings.rule, j_depth, j_flat);
         Self {
             skill_mode: model.settings().skill_mode,
             j_depth,
             j_flat,
-            e_depth,
-            e_flat,
-            e_range,
-            e_excess,
-            e_note,
+            e_depth: e.depth,
+            e_flat: e.flat,
+            e_range: e.range,
+            e_excess: e.excess,
+            e_note: e.note,
             acceptable,
             pick,
             pick_failure,
@@ -240,6 +176,103 @@ impl Allowed {
                 self.skill_mode.name(),
                 self.skill_mode.assumes()
             )
+        }
+    }
+}
+
+/// What E says over the grid (method.md section 11).
+struct EVerdict {
+    depth: Option<f64>,
+    flat: bool,
+    range: Option<[f64; 2]>,
+    excess: Option<[f64; 2]>,
+    note: Option<String>,
+}
+
+impl EVerdict {
+    /// E's depth, flatness, range and excess over `landscape`, and what E
+    /// cannot say (one demo; a refused frame skill).
+    fn of(model: &Model, landscape: &Landscape) -> Self {
+        let n = model.demos().len();
+        let refusal = model.skill_refusal();
+        let depth = if refusal.is_some() {
+            None
+        } else {
+            e_depth(landscape)
+        };
+        let note = match refusal {
+            Some(why) => Some(format!("no skill error E: {why}")),
+            None if n < 2 => Some(
+                "with one demo E equals sum d: E needs two demos to say anything about \
+                 generalisation"
+                    .to_owned(),
+            ),
+            None => None,
+        };
+        let range = refusal.is_none().then(|| {
+            landscape
+                .values(Quantity::ESum)
+                .iter()
+                .filter(|v| v.is_finite())
+                .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &v| {
+                    [lo.min(v), hi.max(v)]
+                })
+        });
+        Self {
+            depth,
+            flat: n >= 2 && depth.is_some_and(|d| d < FLAT_DEPTH),
+            range,
+            excess: refusal.is_none().then(|| excess(landscape)).flatten(),
+            note,
+        }
+    }
+}
+
+/// The pick: the rule asked for, else the optimum where J is not flat and
+/// `compliant` (failing that, `critical`) where it is; each with why.
+fn choose(
+    ctx: &Context<'_>,
+    rule: Option<PickRule>,
+    j_depth: Option<f64>,
+    j_flat: bool,
+) -> (Option<Pick>, Option<String>) {
+    match rule {
+        Some(rule) => match ctx.pick(rule) {
+            Ok(p) => (
+                Some(p.with_why(format!("asked for: {}", rule.rule_text()))),
+                None,
+            ),
+            Err(e) => (None, Some(e)),
+        },
+        None if !j_flat => {
+            let why = format!(
+                "J is not flat (depth {} >= {FLAT_DEPTH}): the demos determine the gains; \
+                 {}{}",
+                depth_text(j_depth),
+                PickRule::Optimum.rule_text(),
+                ctx.limited()
+            );
+            split(ctx.pick(PickRule::Optimum).map(|p| p.with_why(why)))
+        }
+        None => {
+            let why = format!(
+                "J is flat (depth {} < {FLAT_DEPTH}): the demos allow a region of gains; \
+                 within it, {}{}",
+                depth_text(j_depth),
+                PickRule::Compliant.rule_text(),
+                ctx.limited()
+            );
+            match ctx.pick(PickRule::Compliant) {
+                Ok(p) => (Some(p.with_why(why)), None),
+                Err(e) => {
+                    let why = format!(
+                        "J is flat (depth {}); {e}, so {}",
+                        depth_text(j_depth),
+                        PickRule::Critical.rule_text()
+                    );
+                    split(ctx.pick(PickRule::Critical).map(|p| p.with_why(why)))
+                }
+            }
         }
     }
 }
