@@ -465,14 +465,14 @@ fn bad_files_get_an_error_naming_them() {
 fn one_demo_is_told_that_s_needs_two() {
     // Regenerating from a single demo: S is 0 and a note says why.
     let one = tmp("one.mcap");
-    let gen_out = dmpscope(&[
+    let target_out = dmpscope(&[
         "gen-sample",
         "--demos",
         "1",
         "--out",
         one.to_str().expect("path"),
     ]);
-    assert!(gen_out.status.success());
+    assert!(target_out.status.success());
     let out = dmpscope(&[
         "regen",
         one.to_str().expect("path"),

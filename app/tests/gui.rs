@@ -430,7 +430,7 @@ fn background_threads_load_compute_and_extract() {
 #[test]
 fn the_new_target_tab_runs_a_demo_or_the_skill_and_exports_it_for_a_robot() {
     use dmpscope::gui::Export;
-    use dmpscope::session::{GenSource, GeneraliseSpec};
+    use dmpscope::session::{GeneraliseSpec, TargetSource};
     let mut h = harness();
     h.get_by_role_and_label(egui::accesskit::Role::Button, "New target")
         .click();
@@ -476,11 +476,11 @@ fn the_new_target_tab_runs_a_demo_or_the_skill_and_exports_it_for_a_robot() {
     h.get_by_label("the skill of all demos").click();
     h.run_steps(2);
     let spec = *h.state().session().generalise_spec().expect("on");
-    assert_eq!(spec.source, GenSource::Skill);
+    assert_eq!(spec.source, TargetSource::Skill);
     assert_eq!(
         spec,
         GeneraliseSpec {
-            source: GenSource::Skill,
+            source: TargetSource::Skill,
             ..spec.reset()
         },
         "a new source starts at its own target"

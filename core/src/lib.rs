@@ -1,27 +1,4 @@
-//! # dmpscope-core
-//!
-//! Pure computation behind dmpscope: reading hand-tracker recordings, preparing
-//! each demonstration, fitting Dynamic Movement Primitives, and mapping the
-//! human-likeness error `d`, the cross-demo similarity `S` and the objective
-//! `J = S + k * sum(d)` over a grid of gain ratios (D/M, K/M).
-//!
-//! The method, every number of it, is fixed in `docs/method.md`; each module
-//! names the section it implements. Data flows one way:
-//!
-//! ```text
-//! file, folder or bytes -> RawDemo (io::load_source, group)
-//!       -> PreparedDemo (prepare) -> Model (pipeline, dmp, similarity)
-//!       -> Landscape (landscape) -> Extraction (extract)
-//!       -> Report: Table I (report, presets)
-//! ```
-//!
-//! Both front ends (the CLI and the app's session) load with
-//! [`io::load_source`] and build the model with [`build_model`], and tell
-//! the user what happened with [`Notice`]s.
-//!
-//! Nothing here needs threads, a GPU or a file system: the loaders take any
-//! [`std::io::Read`], the landscape engine runs in slices when asked to, and
-//! rayon is used only behind the `parallel` feature.
+#![doc = include_str!("../README.md")]
 
 pub mod arrange;
 pub mod error;

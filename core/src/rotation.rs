@@ -7,13 +7,13 @@
 //! May use: portable.
 
 /// A quaternion `[x, y, z, w]`.
-pub type Q = [f64; 4];
+pub type QuatXyzw = [f64; 4];
 
 /// The identity rotation.
-pub const IDENTITY: Q = [0.0, 0.0, 0.0, 1.0];
+pub const IDENTITY: QuatXyzw = [0.0, 0.0, 0.0, 1.0];
 
 /// The Hamilton product `a * b`.
-pub fn mul(a: Q, b: Q) -> Q {
+pub fn mul(a: QuatXyzw, b: QuatXyzw) -> QuatXyzw {
     let [ax, ay, az, aw] = a;
     let [bx, by, bz, bw] = b;
     [
@@ -25,17 +25,17 @@ pub fn mul(a: Q, b: Q) -> Q {
 }
 
 /// The conjugate `(-v, w)`.
-pub fn conj(q: Q) -> Q {
+pub fn conj(q: QuatXyzw) -> QuatXyzw {
     [-q[0], -q[1], -q[2], q[3]]
 }
 
 /// The four-component dot product.
-pub fn dot(a: Q, b: Q) -> f64 {
+pub fn dot(a: QuatXyzw, b: QuatXyzw) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]
 }
 
 /// The quaternion scaled to unit norm (the identity for a zero one).
-pub fn normalised(q: Q) -> Q {
+pub fn normalised(q: QuatXyzw) -> QuatXyzw {
     let n = dot(q, q).sqrt();
     if n > 0.0 && n.is_finite() {
         q.map(|c| c / n)
@@ -45,7 +45,7 @@ pub fn normalised(q: Q) -> Q {
 }
 
 /// `log(q) = atan2(|v|, w) v / |v|` (0 when `v = 0`).
-pub fn log(q: Q) -> [f64; 3] {
+pub fn log(q: QuatXyzw) -> [f64; 3] {
     let v = [q[0], q[1], q[2]];
     let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     if n == 0.0 {
@@ -56,7 +56,7 @@ pub fn log(q: Q) -> [f64; 3] {
 }
 
 /// `exp(u) = (sin|u| u / |u|, cos|u|)`.
-pub fn exp(u: [f64; 3]) -> Q {
+pub fn exp(u: [f64; 3]) -> QuatXyzw {
     let n = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
     if n == 0.0 {
         return IDENTITY;
@@ -68,13 +68,13 @@ pub fn exp(u: [f64; 3]) -> Q {
 
 /// The rotation vector `2 log(a * conj(b))` taking `b` to `a` (radians
 /// times the axis).
-pub fn rotation_vector(a: Q, b: Q) -> [f64; 3] {
+pub fn rotation_vector(a: QuatXyzw, b: QuatXyzw) -> [f64; 3] {
     log(mul(a, conj(b))).map(|c| 2.0 * c)
 }
 
 /// The angle between two orientations, `2 acos(min(1, |a . b|))`, radians
 /// (NaN for a NaN quaternion).
-pub fn angle(a: Q, b: Q) -> f64 {
+pub fn angle(a: QuatXyzw, b: QuatXyzw) -> f64 {
     let d = dot(a, b).abs();
     if d.is_nan() {
         return f64::NAN;
@@ -84,7 +84,7 @@ pub fn angle(a: Q, b: Q) -> f64 {
 
 /// Spherical linear interpolation from `a` (t = 0) to `b` (t = 1) along
 /// the shorter arc of the two (for `a . b < 0` the arc to `-b`).
-pub fn slerp(a: Q, b: Q, t: f64) -> Q {
+pub fn slerp(a: QuatXyzw, b: QuatXyzw, t: f64) -> QuatXyzw {
     let mut d = dot(a, b);
     let b = if d < 0.0 {
         d = -d;
@@ -107,7 +107,7 @@ pub fn slerp(a: Q, b: Q, t: f64) -> Q {
 
 /// Flips signs in order so that consecutive quaternions have a
 /// non-negative dot product (the same rotations, no 360-degree jumps).
-pub fn sign_continuous(qs: &mut [Q]) {
+pub fn sign_continuous(qs: &mut [QuatXyzw]) {
     for k in 1..qs.len() {
         if dot(qs[k], qs[k - 1]) < 0.0 {
             qs[k] = qs[k].map(|c| -c);

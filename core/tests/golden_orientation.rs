@@ -19,12 +19,12 @@ mod golden_data;
 
 use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::rotation;
-use dmpscope_core::rotation::Q;
+use dmpscope_core::rotation::QuatXyzw;
 use dmpscope_core::{Model, PrepSettings, prepare};
 use golden_data::{fs, golden};
 use serde_json::Value;
 
-fn quats(v: &Value) -> Vec<Q> {
+fn quats(v: &Value) -> Vec<QuatXyzw> {
     v.as_array()
         .expect("quaternions")
         .iter()

@@ -20,7 +20,7 @@ use std::sync::atomic::AtomicBool;
 use dmpscope_core::landscape::grid;
 use dmpscope_core::landscape::grid::{Axis, AxisScale, Grid};
 use dmpscope_core::rotation;
-use dmpscope_core::rotation::Q;
+use dmpscope_core::rotation::QuatXyzw;
 use dmpscope_core::{Model, PrepSettings, Quantity, Unusable, build_model};
 use golden_data::{close, f, fs, golden};
 use serde_json::Value;
@@ -41,14 +41,14 @@ fn model() -> Model {
     built.model
 }
 
-fn quat(v: &Value) -> Q {
+fn quat(v: &Value) -> QuatXyzw {
     let q = fs(v);
     [q[0], q[1], q[2], q[3]]
 }
 
 /// The same orientation up to sign, component by component.
 #[track_caller]
-fn close_q(ours: Q, theirs: Q, what: &str) {
+fn close_q(ours: QuatXyzw, theirs: QuatXyzw, what: &str) {
     let sign = if rotation::dot(ours, theirs) < 0.0 {
         -1.0
     } else {

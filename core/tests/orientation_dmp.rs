@@ -7,12 +7,12 @@ mod common;
 use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::geom::{Vec3, quat_from_xyzw};
 use dmpscope_core::rotation;
-use dmpscope_core::rotation::Q;
+use dmpscope_core::rotation::QuatXyzw;
 use dmpscope_core::{Model, PrepSettings, RawDemo, TimeSource, prepare};
 
 /// A reach whose orientation turns by `angle` about `axis` with a
 /// minimum-jerk profile, from `start`, over `secs` at 100 Hz.
-fn turning(name: &str, start: Q, axis: [f64; 3], angle: f64, secs: f64) -> RawDemo {
+fn turning(name: &str, start: QuatXyzw, axis: [f64; 3], angle: f64, secs: f64) -> RawDemo {
     turning_flipped(name, start, axis, angle, secs, &|_| false)
 }
 
@@ -20,7 +20,7 @@ fn turning(name: &str, start: Q, axis: [f64; 3], angle: f64, secs: f64) -> RawDe
 /// (the same rotation, as trackers do).
 fn turning_flipped(
     name: &str,
-    start: Q,
+    start: QuatXyzw,
     axis: [f64; 3],
     angle: f64,
     secs: f64,
@@ -59,7 +59,7 @@ fn turning_flipped(
     }
 }
 
-fn unit(q: Q) -> dmpscope_core::geom::Quat {
+fn unit(q: QuatXyzw) -> dmpscope_core::geom::Quat {
     quat_from_xyzw(q).expect("a unit quaternion")
 }
 

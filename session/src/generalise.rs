@@ -13,7 +13,7 @@ use crate::stage::Stage;
 
 /// What is generalised.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum GenSource {
+pub enum TargetSource {
     /// A model demo (its index).
     Demo(usize),
     /// The skill of all the model's demos.
@@ -24,7 +24,7 @@ pub enum GenSource {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GeneraliseSpec {
     /// The demo or the skill.
-    pub source: GenSource,
+    pub source: TargetSource,
     /// New start, goal (absolute metres) and duration; `None` keeps the
     /// source's own; the scaling mode.
     pub target: Target,
@@ -34,7 +34,7 @@ impl GeneraliseSpec {
     /// Demo `i` at its own target, per-axis scaling.
     pub fn demo(i: usize) -> Self {
         Self {
-            source: GenSource::Demo(i),
+            source: TargetSource::Demo(i),
             target: Target::default(),
         }
     }
@@ -53,7 +53,7 @@ impl GeneraliseSpec {
 
 /// A generalised run, as the views show it.
 #[derive(Clone, Debug)]
-pub struct GenView {
+pub struct TargetView {
     /// The primitive run (its own start, goal and duration are the
     /// defaults of the target); shared with the stage, not copied per run.
     pub primitive: Arc<Primitive>,
@@ -65,11 +65,11 @@ pub struct GenView {
 
 /// The key the stage was computed for (f64s by their bits).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct GenKey {
+pub(crate) struct TargetKey {
     model: u64,
     dm: u64,
     km: u64,
-    source: GenSource,
+    source: TargetSource,
     start: Option<[u64; 3]>,
     goal: Option<[u64; 3]>,
     start_orientation: Option<[u64; 4]>,
@@ -78,7 +78,7 @@ pub(crate) struct GenKey {
     scaling: Scaling,
 }
 
-impl GenKey {
+impl TargetKey {
     pub(crate) fn new(model: u64, (dm, km): (f64, f64), spec: &GeneraliseSpec) -> Self {
         let bits = |v: Vec3| [v.x, v.y, v.z].map(f64::to_bits);
         Self {
@@ -103,12 +103,12 @@ pub(crate) struct PrimitiveKey {
     model: u64,
     dm: u64,
     km: u64,
-    source: GenSource,
+    source: TargetSource,
     /// A skill's members are mapped by the scaling mode; a demo's are not.
     scaling: Option<Scaling>,
 }
 
-impl GenKey {
+impl TargetKey {
     /// What the run's primitive depends on.
     pub(crate) fn primitive(&self) -> PrimitiveKey {
         PrimitiveKey {
@@ -116,7 +116,7 @@ impl GenKey {
             dm: self.dm,
             km: self.km,
             source: self.source,
-            scaling: (self.source == GenSource::Skill).then_some(self.scaling),
+            scaling: (self.source == TargetSource::Skill).then_some(self.scaling),
         }
     }
 }
@@ -128,13 +128,13 @@ pub(crate) type Fitted = (Arc<Primitive>, Option<Arc<Vec<Vec3>>>);
 pub(crate) fn run(
     primitive: &Stage<PrimitiveKey, Fitted>,
     spec: &GeneraliseSpec,
-) -> Result<GenView, String> {
+) -> Result<TargetView, String> {
     let Some((primitive, forcing_sd)) = primitive.value() else {
         return Err(primitive.error().unwrap_or_default().to_owned());
     };
     primitive
         .rollout(&spec.target)
-        .map(|out| GenView {
+        .map(|out| TargetView {
             primitive: primitive.clone(),
             out,
             forcing_sd: forcing_sd.clone(),
@@ -152,11 +152,11 @@ pub(crate) fn fit(
     spec: &GeneraliseSpec,
 ) -> Result<Fitted, String> {
     match spec.source {
-        GenSource::Demo(i) => Ok((
+        TargetSource::Demo(i) => Ok((
             Arc::new(Primitive::of_demo(model, i, dm, km).map_err(|e| e.to_string())?),
             None,
         )),
-        GenSource::Skill => {
+        TargetSource::Skill => {
             let skill =
                 Skill::new(model, dm, km, spec.target.scaling).map_err(|e| e.to_string())?;
             Ok((Arc::new(skill.primitive), Some(Arc::new(skill.forcing_sd))))

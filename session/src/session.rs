@@ -15,7 +15,7 @@ use dmpscope_core::{Extraction, Model, Notice, PointEval, Report, Rollout, Table
 use crate::commands::Command;
 use crate::diagnostics::DiagSnapshot;
 use crate::executor::PageTime;
-use crate::generalise::{Fitted, GenKey, GenView, GeneraliseSpec, PrimitiveKey};
+use crate::generalise::{Fitted, GeneraliseSpec, PrimitiveKey, TargetKey, TargetView};
 use crate::jobs::Runner;
 use crate::landscape::{Shown, Snapshot};
 use crate::messages::Messages;
@@ -59,7 +59,7 @@ pub struct Session {
     pub(crate) generalise: Option<GeneraliseSpec>,
     /// Its primitive (kept while only the target moves) and its run.
     pub(crate) primitive: Stage<PrimitiveKey, Fitted>,
-    pub(crate) generalised: Stage<GenKey, GenView>,
+    pub(crate) generalised: Stage<TargetKey, TargetView>,
     pub(crate) rl: Stage<RlKey, RlProgress>,
     pub(crate) rl_request: Option<RlRequest>,
     pub(crate) runs: StageRuns,
@@ -195,7 +195,7 @@ impl Session {
             self.primitive.clear();
             return;
         };
-        let key = GenKey::new(version, settings.op, &spec);
+        let key = TargetKey::new(version, settings.op, &spec);
         self.primitive.ensure_now(key.primitive(), |_| {
             crate::generalise::fit(&model, settings.op, &spec)
         });
@@ -212,7 +212,7 @@ impl Session {
     }
 
     /// The generalised run at the operating point, or why there is none.
-    pub fn generalised(&self) -> Option<Result<&GenView, &str>> {
+    pub fn generalised(&self) -> Option<Result<&TargetView, &str>> {
         let g = &self.generalised;
         g.key()
             .map(|_| g.value().ok_or_else(|| g.error().unwrap_or_default()))

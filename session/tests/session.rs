@@ -276,7 +276,7 @@ fn one_demo_says_what_the_diagnostics_need_and_the_rest_works() {
 #[test]
 fn a_new_target_recomputes_only_the_generalised_run() {
     use dmpscope_core::Scaling;
-    use dmpscope_session::{GenSource, GeneraliseSpec};
+    use dmpscope_session::{GeneraliseSpec, TargetSource};
     let mut settings = Settings::with_grid_points(8);
     let mut session = session_on(vec![Source::sample()], &settings);
     let step = |session: &mut Session, settings: &Settings| {
@@ -327,7 +327,7 @@ fn a_new_target_recomputes_only_the_generalised_run() {
     assert!(err.contains("equals the start"), "{err}");
     // The skill of all demos, frame-independent, with its band.
     spec = GeneraliseSpec {
-        source: GenSource::Skill,
+        source: TargetSource::Skill,
         ..spec.reset()
     };
     spec.target.scaling = Scaling::Frame;

@@ -292,7 +292,7 @@ fn orientation_figures(
 /// session's stage: a demo, and the skill of all demos with its band).
 fn generalise_figures(model: &std::sync::Arc<dmpscope_core::Model>) -> anyhow::Result<()> {
     use dmpscope::session::{
-        Command, GenSource, GeneraliseSpec, Runner, Session, Settings, Source,
+        Command, GeneraliseSpec, Runner, Session, Settings, Source, TargetSource,
     };
     use dmpscope_core::{Primitive, Scaling, Target};
     let (dm, km) = (25.0, 156.25);
@@ -327,7 +327,10 @@ fn generalise_figures(model: &std::sync::Arc<dmpscope_core::Model>) -> anyhow::R
     let mut session = Session::new(Runner::inline());
     session.apply(Command::AddSources(vec![Source::sample()]));
     session.update(&settings);
-    for (what, source) in [("demo", GenSource::Demo(0)), ("skill", GenSource::Skill)] {
+    for (what, source) in [
+        ("demo", TargetSource::Demo(0)),
+        ("skill", TargetSource::Skill),
+    ] {
         let mut spec = GeneraliseSpec {
             source,
             target: Target::default(),

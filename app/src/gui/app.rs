@@ -425,7 +425,7 @@ impl eframe::App for DmpApp {
         // A run at a new target of a demo follows the selected demo,
         // whichever tab is open (a new demo starts at its own target).
         if let Some(spec) = self.session.generalise_spec()
-            && let session::GenSource::Demo(i) = spec.source
+            && let session::TargetSource::Demo(i) = spec.source
             && i != self.view.selected
         {
             let mut next = session::GeneraliseSpec::demo(self.view.selected);

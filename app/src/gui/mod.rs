@@ -3,7 +3,7 @@
 //!
 //! `app.rs` is [`DmpApp`] (settings, session, view state, dialogs) and the
 //! frame; `panels/` holds the panels, functions of a `PanelCtx` that push [`Command`]s;
-//! `heatmap.rs`, `plots.rs`, `gen_plots.rs`, `forcing.rs`, `tradeoff.rs` and
+//! `heatmap.rs`, `plots.rs`, `target_plots.rs`, `forcing.rs`, `tradeoff.rs` and
 //! `view3d/` (a custom wgpu pipeline) are the views; `view_state.rs` what the views remember; `file_dialog.rs` the
 //! dialogs (with the app's own browser where the system has none);
 //! `export.rs` the heat maps as PNG; `testing.rs` (feature `testing`) the
@@ -15,10 +15,10 @@ mod export;
 mod file_dialog;
 mod forcing;
 mod frame_log;
-mod gen_plots;
 mod heatmap;
 mod panels;
 mod plots;
+mod target_plots;
 #[cfg(feature = "testing")]
 mod test_hooks;
 #[cfg(feature = "testing")]

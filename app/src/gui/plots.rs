@@ -4,9 +4,9 @@
 //! goal, the angular velocity and the angular acceleration per axis.
 
 use dmpscope_core::fit::orientation::OrientationRollout;
-use dmpscope_core::geom::Vec3 as Point;
+use dmpscope_core::geom::Vec3;
 use dmpscope_core::rotation;
-use dmpscope_core::rotation::Q;
+use dmpscope_core::rotation::QuatXyzw;
 use dmpscope_core::{PreparedDemo, Rollout};
 use eframe::egui::{self, Color32};
 use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints, VLine};
@@ -24,7 +24,7 @@ const MAX_POINTS: usize = 300;
 
 /// One plot: its label, the demo's series, the regenerated series and the
 /// factor from unit time to seconds.
-type Row<'a> = (&'a str, &'a [Point], &'a [Point], f64);
+type Row<'a> = (&'a str, &'a [Vec3], &'a [Vec3], f64);
 
 /// Shows the three plots for `demo` and its `rollout`, stacked, sharing the
 /// time axis (seconds of the demonstration), with a cursor at unit time
@@ -60,12 +60,12 @@ pub fn show_orientation(
     t: f64,
 ) -> Option<Option<f64>> {
     let o = demo.orientation.as_ref()?;
-    let to_goal = |qs: &[Q]| -> Vec<Point> {
+    let to_goal = |qs: &[QuatXyzw]| -> Vec<Vec3> {
         qs.iter()
-            .map(|&q| Point::from(rotation::rotation_vector(o.goal, q)).map(f64::to_degrees))
+            .map(|&q| Vec3::from(rotation::rotation_vector(o.goal, q)).map(f64::to_degrees))
             .collect()
     };
-    let points = |v: &[[f64; 3]]| -> Vec<Point> { v.iter().map(|&p| Point::from(p)).collect() };
+    let points = |v: &[[f64; 3]]| -> Vec<Vec3> { v.iter().map(|&p| Vec3::from(p)).collect() };
     let (demo_rot, dmp_rot) = (to_goal(&o.q_raw), to_goal(&turn.q));
     let (demo_w, dmp_w) = (points(&o.w), points(&turn.w));
     let (demo_a, dmp_a) = (points(&o.wd), points(&turn.a));
@@ -107,7 +107,7 @@ fn show_rows(ui: &mut egui::Ui, duration_s: f64, rows: [Row<'_>; 3], t: f64) -> 
                         .width(1.0),
                 );
                 for (ax, (name, colour)) in AXES.iter().enumerate() {
-                    let series = |v: &[Point]| -> PlotPoints<'static> {
+                    let series = |v: &[Vec3]| -> PlotPoints<'static> {
                         let stride = v.len().div_ceil(MAX_POINTS).max(1);
                         let last = v.len().saturating_sub(1);
                         v.iter()

@@ -221,7 +221,7 @@ fn write_tf_messages(w: &mut BagWriter, tf_id: u16, static_id: u16, epoch: i64) 
 /// The run at a new target the app shows; panics when it is off or failed.
 pub fn run_at_new_target<'a>(
     h: &'a egui_kittest::Harness<'_, dmpscope::gui::DmpApp>,
-) -> &'a dmpscope::session::GenView {
+) -> &'a dmpscope::session::TargetView {
     h.state()
         .session()
         .generalised()

@@ -10,4 +10,5 @@ pub mod allowed;
 pub mod diagnostics;
 pub mod nelder_mead;
 pub mod optimum;
+pub mod point;
 pub mod robot;

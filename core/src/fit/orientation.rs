@@ -23,7 +23,7 @@ use crate::fit::lwr::Projections;
 use crate::prepare::numeric::trapezoid;
 use crate::prepare::orientation::PreparedOrientation;
 use crate::rotation;
-use crate::rotation::Q;
+use crate::rotation::QuatXyzw;
 
 impl PreparedOrientation {
     /// The LWR projections of `f_o = w' + D w - K 2 log(q_g * conj(q))`.
@@ -49,7 +49,7 @@ impl PreparedOrientation {
 #[derive(Clone, Debug, PartialEq)]
 pub struct OrientationRollout {
     /// Orientations, unit quaternions `[x, y, z, w]`.
-    pub q: Vec<Q>,
+    pub q: Vec<QuatXyzw>,
     /// Angular velocities, rad per unit time.
     pub w: Vec<[f64; 3]>,
     /// Angular accelerations, rad per unit time squared.
@@ -77,11 +77,11 @@ impl OrientationRollout {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OrientationTarget {
     /// The start orientation.
-    pub start: Q,
+    pub start: QuatXyzw,
     /// The initial angular velocity, unit time.
     pub w0: [f64; 3],
     /// The goal orientation.
-    pub goal: Q,
+    pub goal: QuatXyzw,
 }
 
 /// The fitted forcing term `F0 + D F1 + K F2` on the grid.
@@ -99,7 +99,7 @@ pub fn forcing_at(proj: &Projections, dm: f64, km: f64) -> Vec<[f64; 3]> {
 
 /// `d_rot`: the angle between a path and a target, integrated over unit
 /// time (trapezoid), radians.
-pub fn error(path: &[Q], target: &[Q]) -> f64 {
+pub fn error(path: &[QuatXyzw], target: &[QuatXyzw]) -> f64 {
     let n = path.len().min(target.len());
     let angles = path
         .iter()

@@ -5,7 +5,7 @@ use crate::fit::orientation::{OrientationRollout, OrientationTarget, forcing_at}
 use crate::kernels::orientation_run::rollout_forcing;
 use crate::landscape::model::Model;
 use crate::rotation;
-use crate::rotation::Q;
+use crate::rotation::QuatXyzw;
 
 /// A demo's orientation DMP at one gain pair, to run at a new start and
 /// goal orientation (method.md section 12: the forcing term unchanged).
@@ -19,11 +19,11 @@ pub struct OrientationPrimitive {
     /// separate orientation gains ([`crate::fit::settings::DmpSettings::orientation_gains`]).
     pub gains: (f64, f64),
     /// Its own start orientation (the smoothed `q(0)`).
-    pub start: Q,
+    pub start: QuatXyzw,
     /// Its own initial angular velocity, unit time.
     pub w0: [f64; 3],
     /// Its own goal orientation.
-    pub goal: Q,
+    pub goal: QuatXyzw,
 }
 
 impl OrientationPrimitive {
@@ -49,8 +49,8 @@ impl OrientationPrimitive {
     /// makes: a new start in its own start's hemisphere, a new goal in the
     /// start's (the shorter way round). The demo's own goal keeps its sign:
     /// a demo may turn further than 180 degrees.
-    pub fn ends(&self, start: Option<Q>, goal: Option<Q>) -> (Q, Q) {
-        let towards = |q: Q, other: Q| {
+    pub fn ends(&self, start: Option<QuatXyzw>, goal: Option<QuatXyzw>) -> (QuatXyzw, QuatXyzw) {
+        let towards = |q: QuatXyzw, other: QuatXyzw| {
             if rotation::dot(q, other) < 0.0 {
                 q.map(|c| -c)
             } else {
@@ -64,7 +64,7 @@ impl OrientationPrimitive {
 
     /// Runs it at its gains from `start` to `goal` (its own where `None`;
     /// signs as [`OrientationPrimitive::ends`] takes them).
-    pub fn rollout(&self, start: Option<Q>, goal: Option<Q>) -> OrientationRollout {
+    pub fn rollout(&self, start: Option<QuatXyzw>, goal: Option<QuatXyzw>) -> OrientationRollout {
         let (start, goal) = self.ends(start, goal);
         let target = OrientationTarget {
             start,

@@ -28,9 +28,9 @@ pub struct Target {
     /// Spatial scaling mode.
     pub scaling: Scaling,
     /// New start orientation, unit `[x, y, z, w]` (method.md section 12).
-    pub start_orientation: Option<crate::rotation::Q>,
+    pub start_orientation: Option<crate::rotation::QuatXyzw>,
     /// New goal orientation, unit `[x, y, z, w]`.
-    pub goal_orientation: Option<crate::rotation::Q>,
+    pub goal_orientation: Option<crate::rotation::QuatXyzw>,
 }
 
 /// The shortest duration a target may ask for, seconds.
@@ -109,7 +109,7 @@ pub struct Generalised {
     pub orientation: Option<OrientationRollout>,
     /// The goal orientation it ran to (its own when none was asked for; a
     /// new one with the sign the run took), with an orientation DMP.
-    pub orientation_goal: Option<crate::rotation::Q>,
+    pub orientation_goal: Option<crate::rotation::QuatXyzw>,
 }
 
 impl Primitive {

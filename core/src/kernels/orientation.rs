@@ -48,7 +48,7 @@ use crate::kernels::orientation_poly::{
 };
 use crate::kernels::orientation_poly::{Lane, each};
 use crate::rotation;
-use crate::rotation::Q;
+use crate::rotation::QuatXyzw;
 
 /// The largest `|u|^2` for which `exp(u)` takes its short Taylor series
 /// ([`SINC_SHORT`], [`COS_SHORT`]: truncation below 3e-16 relative), that
@@ -75,12 +75,12 @@ pub(crate) struct RotKernel {
     pub(crate) forcing: Vec<[[f64; 3]; 3]>,
     /// Per grid point: `q_g * conj(q_raw)`, the error's target seen from
     /// the goal.
-    pub(crate) target: Vec<Q>,
+    pub(crate) target: Vec<QuatXyzw>,
     /// Where the rollout starts.
     pub(crate) start: Start,
     /// The start orientation and the goal the kernel was made from (the
     /// path `orientation_point` records).
-    pub(crate) ends: (Q, Q),
+    pub(crate) ends: (QuatXyzw, QuatXyzw),
 }
 
 /// Where an orientation rollout starts: the rotation to go and the
@@ -88,14 +88,14 @@ pub(crate) struct RotKernel {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Start {
     /// `q_g * conj(q_0)`, unit norm.
-    pub(crate) r0: Q,
+    pub(crate) r0: QuatXyzw,
     /// `w(0)`, unit time.
     pub(crate) w0: [f64; 3],
 }
 
 impl Start {
     /// From a start orientation, an initial angular velocity and a goal.
-    pub(crate) fn new(start: Q, w0: [f64; 3], goal: Q) -> Self {
+    pub(crate) fn new(start: QuatXyzw, w0: [f64; 3], goal: QuatXyzw) -> Self {
         Self {
             r0: rotation::normalised(rotation::mul(goal, rotation::conj(start))),
             w0,
@@ -167,7 +167,7 @@ impl<const V: usize> Lanes<V> {
     }
 
     /// Lane `l`'s rotation to go.
-    pub(crate) fn r(&self, l: usize) -> Q {
+    pub(crate) fn r(&self, l: usize) -> QuatXyzw {
         self.r.map(|c| c[l / 4].as_array()[l % 4])
     }
 
@@ -179,7 +179,7 @@ impl<const V: usize> Lanes<V> {
     /// The angle `2 acos(min(1, |q . q_raw|))` per lane, `target` being
     /// `q_g * conj(q_raw)`.
     #[inline(always)]
-    pub(crate) fn angle(&self, target: Q) -> Lane<V> {
+    pub(crate) fn angle(&self, target: QuatXyzw) -> Lane<V> {
         self.angle_of(target.map(|c| [f64x4::splat(c); V]))
     }
 
@@ -361,7 +361,7 @@ const ONE: f64x4 = f64x4::splat(1.0);
 
 /// `atan2(|v|, w) / |v|` of a unit quaternion `(v, w)`, 0 where `v = 0`
 /// (method.md section 12's `log`, without its vector).
-fn exact_log_factor(r: Q) -> f64 {
+fn exact_log_factor(r: QuatXyzw) -> f64 {
     let n = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
     if n == 0.0 {
         0.0
@@ -492,15 +492,15 @@ impl<const V: usize> Observe<V> for NoPath {
 /// velocity and the step's angular acceleration; what every orientation
 /// rollout returns.
 pub(crate) struct KeepPath {
-    start: Q,
-    goal: Q,
+    start: QuatXyzw,
+    goal: QuatXyzw,
     lane: usize,
     path: OrientationRollout,
 }
 
 impl KeepPath {
     /// An empty path of a run from `start` to `goal` of `n` steps.
-    pub(crate) fn new(start: Q, goal: Q, n: usize) -> Self {
+    pub(crate) fn new(start: QuatXyzw, goal: QuatXyzw, n: usize) -> Self {
         Self {
             start,
             goal,

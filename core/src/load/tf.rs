@@ -9,12 +9,9 @@
 
 use std::collections::BTreeMap;
 
-use crate::rotation::{conj, mul};
+use crate::rotation::{QuatXyzw, conj, mul};
 
-/// A rotation as a unit quaternion `[x, y, z, w]`.
-pub type Quat = [f64; 4];
-
-const IDENTITY: Quat = [0.0, 0.0, 0.0, 1.0];
+const IDENTITY: QuatXyzw = [0.0, 0.0, 0.0, 1.0];
 
 /// A frame's transform to its parent: `x_parent = rotation * x + translation`.
 #[derive(Clone, Debug, PartialEq)]
@@ -22,7 +19,7 @@ struct Edge {
     parent: String,
     is_static: bool,
     /// `(stamp_ns, translation, rotation)`, sorted by stamp once finished.
-    samples: Vec<(i64, [f64; 3], Quat)>,
+    samples: Vec<(i64, [f64; 3], QuatXyzw)>,
 }
 
 /// The transforms seen, by child frame.
@@ -47,7 +44,7 @@ impl TfBuffer {
         child: &str,
         stamp_ns: i64,
         translation: [f64; 3],
-        rotation: Quat,
+        rotation: QuatXyzw,
         is_static: bool,
     ) {
         let (parent, child) = (frame_name(parent), frame_name(child));
@@ -100,7 +97,7 @@ impl TfBuffer {
         target: &str,
         frame: &str,
         stamp_ns: i64,
-    ) -> Result<([f64; 3], Quat, bool), String> {
+    ) -> Result<([f64; 3], QuatXyzw, bool), String> {
         self.sort();
         let (target, frame) = (frame_name(target), frame_name(frame));
         let (root_a, q_frame, origin, held_a) = self.to_root(frame, stamp_ns)?;
@@ -120,7 +117,7 @@ impl TfBuffer {
         &self,
         frame: &str,
         stamp_ns: i64,
-    ) -> Result<(String, Quat, [f64; 3], bool), String> {
+    ) -> Result<(String, QuatXyzw, [f64; 3], bool), String> {
         let (mut q, mut t) = (IDENTITY, [0.0; 3]);
         let mut current = frame.to_owned();
         let mut held = false;
@@ -140,7 +137,7 @@ impl TfBuffer {
 }
 
 impl Edge {
-    fn at(&self, stamp_ns: i64) -> ([f64; 3], Quat, bool) {
+    fn at(&self, stamp_ns: i64) -> ([f64; 3], QuatXyzw, bool) {
         let s = &self.samples;
         let (Some(first), Some(last)) = (s.first(), s.last()) else {
             return ([0.0; 3], IDENTITY, false);
@@ -165,7 +162,7 @@ impl Edge {
     }
 }
 
-fn normalised(q: Quat) -> Quat {
+fn normalised(q: QuatXyzw) -> QuatXyzw {
     let n = q.iter().map(|v| v * v).sum::<f64>().sqrt();
     if n > 0.0 && n.is_finite() {
         q.map(|v| v / n)
@@ -175,13 +172,13 @@ fn normalised(q: Quat) -> Quat {
 }
 
 /// Rotates `v` by the unit quaternion `q`.
-pub fn rotate(q: Quat, v: [f64; 3]) -> [f64; 3] {
+pub fn rotate(q: QuatXyzw, v: [f64; 3]) -> [f64; 3] {
     let p = mul(mul(q, [v[0], v[1], v[2], 0.0]), conj(q));
     [p[0], p[1], p[2]]
 }
 
 /// Spherical interpolation from `a` (u = 0) to `b` (u = 1), the short way.
-fn slerp(a: Quat, mut b: Quat, u: f64) -> Quat {
+fn slerp(a: QuatXyzw, mut b: QuatXyzw, u: f64) -> QuatXyzw {
     let mut dot: f64 = (0..4).map(|k| a[k] * b[k]).sum();
     if dot < 0.0 {
         b = b.map(|v| -v);
@@ -203,7 +200,7 @@ fn slerp(a: Quat, mut b: Quat, u: f64) -> Quat {
 mod tests {
     use super::*;
 
-    fn yaw(angle: f64) -> Quat {
+    fn yaw(angle: f64) -> QuatXyzw {
         [0.0, 0.0, (angle / 2.0).sin(), (angle / 2.0).cos()]
     }
 

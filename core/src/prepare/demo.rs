@@ -141,7 +141,7 @@ fn prepare_orientation(
     let Some(all) = &raw.orientations else {
         return Ok(None);
     };
-    let qs: Vec<crate::rotation::Q> = raw
+    let qs: Vec<crate::rotation::QuatXyzw> = raw
         .unique_order()
         .iter()
         .filter_map(|&i| all.get(i))

@@ -11,21 +11,21 @@ use crate::error::Result;
 use crate::prepare::numeric::interp;
 use crate::prepare::savgol::SavGol;
 use crate::rotation;
-use crate::rotation::Q;
+use crate::rotation::QuatXyzw;
 
 /// A demo's orientation on the unit-time grid.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PreparedOrientation {
     /// The raw orientation slerped onto the grid: the error's target.
-    pub q_raw: Vec<Q>,
+    pub q_raw: Vec<QuatXyzw>,
     /// The smoothed orientation, unit norm.
-    pub q: Vec<Q>,
+    pub q: Vec<QuatXyzw>,
     /// Angular velocity in unit time (space frame), rad per unit time.
     pub w: Vec<[f64; 3]>,
     /// Angular acceleration in unit time.
     pub wd: Vec<[f64; 3]>,
     /// The goal orientation `q_raw(1)`.
-    pub goal: Q,
+    pub goal: QuatXyzw,
 }
 
 /// Where to sample: the recorded times, the uniform grid and the
@@ -44,7 +44,7 @@ pub struct Grids<'a> {
 }
 
 /// Slerp of the samples `qs` at times `t` onto `at` (clamped at the ends).
-fn slerp_onto(at: &[f64], t: &[f64], qs: &[Q]) -> Vec<Q> {
+fn slerp_onto(at: &[f64], t: &[f64], qs: &[QuatXyzw]) -> Vec<QuatXyzw> {
     let last = t.len() - 1;
     at.iter()
         .map(|&x| {
@@ -66,7 +66,7 @@ fn slerp_onto(at: &[f64], t: &[f64], qs: &[Q]) -> Vec<Q> {
 impl PreparedOrientation {
     /// Prepares the quaternions `qs` (one per sorted unique sample, unit
     /// norm) on `grids`.
-    pub fn new(qs: &[Q], grids: &Grids<'_>) -> Result<Self> {
+    pub fn new(qs: &[QuatXyzw], grids: &Grids<'_>) -> Result<Self> {
         let mut qs = qs.to_vec();
         rotation::sign_continuous(&mut qs);
         let uniform = slerp_onto(grids.uniform, grids.t, &qs);
@@ -83,11 +83,11 @@ impl PreparedOrientation {
             parts[2][c] = interp(grids.unit, grids.uniform, &d2);
         }
         let n = grids.unit.len();
-        let at = |p: &[Vec<f64>; 4], k: usize| -> Q { std::array::from_fn(|c| p[c][k]) };
-        let q: Vec<Q> = (0..n)
+        let at = |p: &[Vec<f64>; 4], k: usize| -> QuatXyzw { std::array::from_fn(|c| p[c][k]) };
+        let q: Vec<QuatXyzw> = (0..n)
             .map(|k| rotation::normalised(at(&parts[0], k)))
             .collect();
-        let vec2 = |d: Q, q: Q| {
+        let vec2 = |d: QuatXyzw, q: QuatXyzw| {
             let p = rotation::mul(d, rotation::conj(q));
             [2.0 * p[0], 2.0 * p[1], 2.0 * p[2]]
         };

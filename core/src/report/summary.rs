@@ -53,6 +53,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::extract::diagnostics::{DiagAbout, Diagnostics};
 use crate::extract::optimum::Extraction;
+use crate::extract::point::GainPoint;
 use crate::landscape::model::Model;
 use crate::report::table::{TableRow, preset_rows};
 
@@ -70,18 +71,10 @@ pub struct DemoSummary {
 /// The extracted gains as a report shows them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Optimum {
-    /// D/M.
-    pub dm: f64,
-    /// K/M.
-    pub km: f64,
-    /// Damping ratio.
-    pub zeta: f64,
-    /// `J` at the optimum.
-    pub j: f64,
-    /// `S` at the optimum.
-    pub s: f64,
-    /// `sum d` at the optimum, metres.
-    pub d_sum: f64,
+    /// The gains and J, S and sum d there (read through `Deref`:
+    /// `optimum.dm`).
+    #[serde(flatten)]
+    pub at: GainPoint,
     /// Whether the optimum lies on the box's edge.
     pub on_edge: bool,
     /// The sides it lies on, in words ("" when interior).
@@ -97,18 +90,28 @@ pub struct Optimum {
 impl From<&Extraction> for Optimum {
     fn from(x: &Extraction) -> Self {
         Self {
-            dm: x.eval.dm,
-            km: x.eval.km,
-            zeta: x.eval.zeta,
-            j: x.j,
-            s: x.eval.s,
-            d_sum: x.eval.d_sum,
+            at: GainPoint {
+                dm: x.eval.dm,
+                km: x.eval.km,
+                zeta: x.eval.zeta,
+                j: x.j,
+                s: x.eval.s,
+                d_sum: x.eval.d_sum,
+            },
             on_edge: x.on_edge(),
             edge: x.edges.describe(),
             grid_min_j: x.grid_min_j,
             iterations: x.iterations,
             converged: x.converged,
         }
+    }
+}
+
+impl std::ops::Deref for Optimum {
+    type Target = GainPoint;
+
+    fn deref(&self) -> &GainPoint {
+        &self.at
     }
 }
 

@@ -8,7 +8,7 @@
 
 use crate::rng::Rng;
 use crate::rotation;
-use crate::rotation::Q;
+use crate::rotation::QuatXyzw;
 use crate::synth::planted_forcing::{Forcing, GRID, PlantedSpec, SUBSTEPS, forcing_towards, turn};
 
 /// The nominal turn as a rotation vector (radians times the axis).
@@ -37,7 +37,7 @@ impl Turns {
     }
 
     /// The next demo's orientation path on the fine unit-time grid.
-    pub(crate) fn next_path(&mut self) -> Vec<Q> {
+    pub(crate) fn next_path(&mut self) -> Vec<QuatXyzw> {
         let stretch = self.rng.range(0.5, 1.5);
         let angle = self.rng.range(-0.8, 0.8);
         let offset: [f64; 3] = std::array::from_fn(|_| 0.05 * self.rng.normal());
@@ -49,7 +49,7 @@ impl Turns {
 }
 
 /// The orientation DMP from rest at `start` towards `goal` on the fine grid.
-fn integrate(f: &Forcing, dm: f64, km: f64, start: Q, goal: Q) -> Vec<Q> {
+fn integrate(f: &Forcing, dm: f64, km: f64, start: QuatXyzw, goal: QuatXyzw) -> Vec<QuatXyzw> {
     let steps = (GRID - 1) * SUBSTEPS;
     let dt = 1.0 / steps as f64;
     let alpha = crate::fit::settings::DmpSettings::default().alpha_x;
@@ -70,7 +70,7 @@ fn integrate(f: &Forcing, dm: f64, km: f64, start: Q, goal: Q) -> Vec<Q> {
 }
 
 /// Slerp of a fine path at unit time `s` in [0, 1].
-pub(crate) fn sample(path: &[Q], s: f64) -> Q {
+pub(crate) fn sample(path: &[QuatXyzw], s: f64) -> QuatXyzw {
     let last = path.len() - 1;
     let pos = s.clamp(0.0, 1.0) * last as f64;
     let i = (pos.floor() as usize).min(last.saturating_sub(1));

@@ -1,7 +1,4 @@
-//! The browser build's entry point (`web/build.sh`): wasm-bindgen calls
-//! `main` when the module loads, which starts the app on the page's
-//! canvas. Natively there is nothing to run: the desktop app and the
-//! command line are the `dmpscope` binary.
+#![doc = include_str!("../README.md")]
 
 /// Starts the app in the browser.
 #[cfg(target_arch = "wasm32")]

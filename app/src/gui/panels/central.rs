@@ -13,7 +13,7 @@ use eframe::egui::{self, Color32};
 use super::super::commands::Map;
 use super::super::heatmap::{self, MapInput, Marker};
 use super::super::view_state::ViewState;
-use super::super::view3d::{GenOverlay, Handle, HandleMove};
+use super::super::view3d::{Handle, HandleMove, TargetOverlay};
 use super::PanelCtx;
 use crate::session::{Command as SessionCommand, Session, Settings, Shown, Status};
 
@@ -38,7 +38,7 @@ pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         // The demo hovered anywhere is the one the 3D view highlights.
         let highlighted = view.hovered.unwrap_or(view.selected);
         let generalised = session.generalised().and_then(Result::ok);
-        let overlay = generalised.map(|g| GenOverlay {
+        let overlay = generalised.map(|g| TargetOverlay {
             path: &g.out.unit.y,
             band: &g.out.band,
             start: g.out.start,

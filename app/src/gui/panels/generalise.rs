@@ -4,23 +4,23 @@
 //! start to a goal over a duration, with the scaling mode, its peak speed,
 //! peak acceleration and end error, and Reset.
 
-use dmpscope_core::geom::Vec3 as Point;
+use dmpscope_core::geom::Vec3;
 use dmpscope_core::{Model, Scaling, Target};
 use eframe::egui::{self, Color32};
 
 use super::super::commands::{Command, Export};
 use super::{PanelCtx, orientation_target};
-use crate::session::{Command as SessionCommand, GenSource, GeneraliseSpec, Session};
+use crate::session::{Command as SessionCommand, GeneraliseSpec, Session, TargetSource};
 
 /// The source's own start, goal (absolute) and duration.
-pub fn own_target(model: &Model, source: GenSource) -> Option<(Point, Point, f64)> {
+pub fn own_target(model: &Model, source: TargetSource) -> Option<(Vec3, Vec3, f64)> {
     let demos = model.demos();
     match source {
-        GenSource::Demo(i) => demos.get(i).map(|d| (d.p0, d.p0 + d.goal, d.duration_s)),
-        GenSource::Skill => {
+        TargetSource::Demo(i) => demos.get(i).map(|d| (d.p0, d.p0 + d.goal, d.duration_s)),
+        TargetSource::Skill => {
             let n = demos.len().max(1) as f64;
-            let mean = |f: &dyn Fn(&dmpscope_core::PreparedDemo) -> Point| -> Point {
-                Point::from_fn(|a, _| demos.iter().map(|d| f(d)[a]).sum::<f64>() / n)
+            let mean = |f: &dyn Fn(&dmpscope_core::PreparedDemo) -> Vec3| -> Vec3 {
+                Vec3::from_fn(|a, _| demos.iter().map(|d| f(d)[a]).sum::<f64>() / n)
             };
             let start = mean(&|d| d.p0);
             let shift = mean(&|d| d.goal);
@@ -32,7 +32,7 @@ pub fn own_target(model: &Model, source: GenSource) -> Option<(Point, Point, f64
 }
 
 /// Three coordinates as drag values; returns the new value when edited.
-fn triple(ui: &mut egui::Ui, label: &str, value: Point) -> Option<Point> {
+fn triple(ui: &mut egui::Ui, label: &str, value: Vec3) -> Option<Vec3> {
     let mut v = value;
     let mut changed = false;
     ui.horizontal(|ui| {
@@ -124,13 +124,17 @@ fn generalise_switch_ui(
 fn generalise_source_ui(ui: &mut egui::Ui, spec: &mut GeneraliseSpec, selected: usize) {
     ui.horizontal(|ui| {
         ui.label("of");
-        let demo = GenSource::Demo(selected);
+        let demo = TargetSource::Demo(selected);
         ui.selectable_value(&mut spec.source, demo, "the selected demo");
-        ui.selectable_value(&mut spec.source, GenSource::Skill, "the skill of all demos")
-            .on_hover_text(
-                "The mean of the demos' forcing terms, each mapped to the mean displacement \
+        ui.selectable_value(
+            &mut spec.source,
+            TargetSource::Skill,
+            "the skill of all demos",
+        )
+        .on_hover_text(
+            "The mean of the demos' forcing terms, each mapped to the mean displacement \
                  by the scaling mode; the band is ±1 SD of the demos' own runs",
-            );
+        );
     });
     ui.horizontal(|ui| {
         ui.label("scaling");
@@ -149,7 +153,7 @@ fn generalise_source_ui(ui: &mut egui::Ui, spec: &mut GeneraliseSpec, selected: 
 }
 
 /// The start, goal and duration, with the source's `own` ones as defaults, and Reset.
-fn generalise_target_ui(ui: &mut egui::Ui, spec: &mut GeneraliseSpec, own: (Point, Point, f64)) {
+fn generalise_target_ui(ui: &mut egui::Ui, spec: &mut GeneraliseSpec, own: (Vec3, Vec3, f64)) {
     let (own_start, own_goal, own_duration) = own;
     let start = spec.target.start.unwrap_or(own_start);
     let goal = spec.target.goal.unwrap_or(own_goal);

@@ -4,12 +4,12 @@
 //! notice), each with its own as the default, and the end angle reached.
 
 use dmpscope_core::geom::{quat_from_xyzw, xyzw};
-use dmpscope_core::rotation::Q;
+use dmpscope_core::rotation::QuatXyzw;
 use dmpscope_core::{Model, Notice, Target};
 use eframe::egui;
 
 use super::PanelCtx;
-use crate::session::{Command as SessionCommand, GenSource};
+use crate::session::{Command as SessionCommand, TargetSource};
 
 /// Which orientation a row edits.
 #[derive(Clone, Copy)]
@@ -26,7 +26,7 @@ impl End {
         }
     }
 
-    fn of(self, target: &mut Target) -> &mut Option<Q> {
+    fn of(self, target: &mut Target) -> &mut Option<QuatXyzw> {
         match self {
             Self::Start => &mut target.start_orientation,
             Self::Goal => &mut target.goal_orientation,
@@ -36,8 +36,8 @@ impl End {
 
 /// The demo's own start and goal orientation, `None` for the skill or a
 /// demo without orientation.
-pub fn own_orientation(model: &Model, source: GenSource) -> Option<(Q, Q)> {
-    let GenSource::Demo(i) = source else {
+pub fn own_orientation(model: &Model, source: TargetSource) -> Option<(QuatXyzw, QuatXyzw)> {
+    let TargetSource::Demo(i) = source else {
         return None;
     };
     let o = model.demos().get(i)?.orientation.as_ref()?;
@@ -45,7 +45,7 @@ pub fn own_orientation(model: &Model, source: GenSource) -> Option<(Q, Q)> {
 }
 
 /// Roll, pitch and yaw (x, y, z fixed axes), degrees, of `q`.
-pub fn rpy_degrees(q: Q) -> [f64; 3] {
+pub fn rpy_degrees(q: QuatXyzw) -> [f64; 3] {
     let Some(u) = quat_from_xyzw(q) else {
         return [0.0; 3];
     };
@@ -54,7 +54,7 @@ pub fn rpy_degrees(q: Q) -> [f64; 3] {
 }
 
 /// The orientation of roll, pitch and yaw in degrees.
-pub fn from_rpy_degrees(rpy: [f64; 3]) -> Q {
+pub fn from_rpy_degrees(rpy: [f64; 3]) -> QuatXyzw {
     let [r, p, y] = rpy.map(f64::to_radians);
     xyzw(&dmpscope_core::geom::Quat::from_euler_angles(r, p, y))
 }
@@ -66,7 +66,7 @@ pub fn orientation_rows_ui(
     ui: &mut egui::Ui,
     cx: &mut PanelCtx<'_>,
     target: &mut Target,
-    own: (Q, Q),
+    own: (QuatXyzw, QuatXyzw),
 ) {
     for (end, own) in [(End::Start, own.0), (End::Goal, own.1)] {
         let current = end.of(target).unwrap_or(own);
@@ -99,7 +99,13 @@ pub fn orientation_rows_ui(
 
 /// The four components of a quaternion, typed; normalised (with a notice)
 /// when they are not unit, refused when zero or not finite.
-fn quaternion_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>, target: &mut Target, end: End, q: Q) {
+fn quaternion_ui(
+    ui: &mut egui::Ui,
+    cx: &mut PanelCtx<'_>,
+    target: &mut Target,
+    end: End,
+    q: QuatXyzw,
+) {
     let mut typed = q;
     let mut changed = false;
     ui.horizontal(|ui| {

@@ -8,9 +8,9 @@ use eframe::egui;
 
 use super::super::commands::Command;
 use super::super::view_state::{RightTab, ViewState};
-use super::super::{forcing, gen_plots, plots, tradeoff};
+use super::super::{forcing, plots, target_plots, tradeoff};
 use super::{PanelCtx, diagnostics, generalise};
-use crate::session::{GenSource, Session, Settings};
+use crate::session::{Session, Settings, TargetSource};
 
 /// The plots panel.
 pub fn plots_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
@@ -98,17 +98,17 @@ fn generalised_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let own = session
         .generalise_spec()
         .and_then(|spec| match spec.source {
-            GenSource::Demo(i) => Some(i),
-            GenSource::Skill => None,
+            TargetSource::Demo(i) => Some(i),
+            TargetSource::Skill => None,
         })
         .and_then(|i| {
             let d = model.demos().get(i)?;
-            Some(gen_plots::OwnRun {
+            Some(target_plots::OwnRun {
                 rollout: session.paths().get(i)?,
                 duration_s: d.duration_s,
             })
         });
-    if let Some(t) = gen_plots::show(ui, g, own, cx.view.t) {
+    if let Some(t) = target_plots::show(ui, g, own, cx.view.t) {
         cx.view.t = t;
     }
 }

@@ -7,7 +7,7 @@ mod camera;
 mod gpu;
 mod scene;
 
-use dmpscope_core::geom::Vec3 as Point;
+use dmpscope_core::geom;
 use std::sync::Arc;
 
 use dmpscope_core::fit::orientation::OrientationRollout;
@@ -17,18 +17,18 @@ use eframe::egui_wgpu;
 use glam::Vec2;
 
 use camera::OrbitCamera;
-use scene::{Frame, SceneGen};
+use scene::{Frame, SceneTarget};
 
 /// A run at a new target drawn over the demos, its start and goal draggable.
-pub struct GenOverlay<'a> {
+pub struct TargetOverlay<'a> {
     /// Absolute positions on the unit-time grid.
-    pub path: &'a [Point],
+    pub path: &'a [geom::Vec3],
     /// A skill's ±1 SD per axis (empty for a demo).
-    pub band: &'a [Point],
+    pub band: &'a [geom::Vec3],
     /// The start, absolute.
-    pub start: Point,
+    pub start: geom::Vec3,
     /// The goal, absolute.
-    pub goal: Point,
+    pub goal: geom::Vec3,
     /// Its orientation on the grid, where the run has one.
     pub turns: Option<&'a [[f64; 4]]>,
 }
@@ -50,7 +50,7 @@ pub enum HandleMove {
         /// Which.
         handle: Handle,
         /// Where to, absolute metres.
-        to: Point,
+        to: geom::Vec3,
     },
     /// The goal orientation turned by this rotation vector (radians about
     /// its axis, in the scene's frame): a drag across the screen turns it
@@ -183,8 +183,8 @@ impl View3d {
         regen: (&[Rollout], &[Option<OrientationRollout>]),
         selected: usize,
         t: f64,
-        learned: Option<(usize, &[Point])>,
-        overlay: Option<&GenOverlay<'_>>,
+        learned: Option<(usize, &[geom::Vec3])>,
+        overlay: Option<&TargetOverlay<'_>>,
     ) -> Option<HandleMove> {
         let (regen, turns) = regen;
         let size = ui.available_size().max(egui::vec2(120.0, 120.0));
@@ -229,7 +229,7 @@ impl View3d {
         response: &egui::Response,
         rect: egui::Rect,
         frame: &Frame,
-        overlay: Option<&GenOverlay<'_>>,
+        overlay: Option<&TargetOverlay<'_>>,
     ) -> (OrbitCamera, Option<HandleMove>) {
         if self.frame != Some(*frame) || self.camera.is_none() {
             self.frame = Some(*frame);
@@ -308,7 +308,7 @@ impl View3d {
             colours: &colours,
             pixels_per_point: ppp,
             learned: drawn.learned,
-            generalised: drawn.overlay.map(|ov| SceneGen {
+            generalised: drawn.overlay.map(|ov| SceneTarget {
                 path: ov.path,
                 band: ov.band,
                 start: ov.start,
@@ -327,7 +327,7 @@ impl View3d {
         let view_proj = camera.view_proj(aspect);
         let to_screen = |p: glam::Vec3| project(view_proj, rect, p);
         self.handles_on_screen = drawn.overlay.and_then(|ov| {
-            let screen = |p: Point| to_screen(frame.local(p));
+            let screen = |p: geom::Vec3| to_screen(frame.local(p));
             Some([screen(ov.start)?, screen(ov.goal)?])
         });
         let uniforms = gpu::Uniforms {
@@ -353,7 +353,7 @@ impl View3d {
         rect: egui::Rect,
         camera: &OrbitCamera,
         frame: &Frame,
-        ov: &GenOverlay<'_>,
+        ov: &TargetOverlay<'_>,
     ) -> Option<HandleMove> {
         let aspect = rect.width() / rect.height().max(1.0);
         let view_proj = camera.view_proj(aspect);
@@ -361,8 +361,9 @@ impl View3d {
         if response.drag_started_by(egui::PointerButton::Primary)
             && let Some(press) = ui.input(|i| i.pointer.press_origin())
         {
-            let distance =
-                |p: Point| to_screen(frame.local(p)).map_or(f32::INFINITY, |s| s.distance(press));
+            let distance = |p: geom::Vec3| {
+                to_screen(frame.local(p)).map_or(f32::INFINITY, |s| s.distance(press))
+            };
             let (ds, dg) = (distance(ov.start), distance(ov.goal));
             self.dragging = if dg <= GRAB_RADIUS && dg <= ds {
                 Some(Handle::Goal)
@@ -398,7 +399,7 @@ impl View3d {
             let reach = 10.0 * frame.bounds.radius();
             camera.hit_level(aspect, Vec2::new(rel.x, -rel.y), p.z, p, reach)
         }?;
-        let to = Point::from_fn(|a, _| frame.origin[a] + f64::from(new_local[a]));
+        let to = geom::Vec3::from_fn(|a, _| frame.origin[a] + f64::from(new_local[a]));
         Some(HandleMove::Moved { handle, to })
     }
 }
@@ -411,8 +412,8 @@ struct Drawn<'a> {
     turns: &'a [Option<OrientationRollout>],
     selected: usize,
     t: f64,
-    learned: Option<(usize, &'a [Point])>,
-    overlay: Option<&'a GenOverlay<'a>>,
+    learned: Option<(usize, &'a [geom::Vec3])>,
+    overlay: Option<&'a TargetOverlay<'a>>,
 }
 
 /// The axis names and the hints over the picture.

@@ -4,7 +4,8 @@
 //! Coordinates are relative to a fixed scene origin so f32 keeps
 //! sub-millimetre precision far from the tracker's origin.
 
-use dmpscope_core::geom::Vec3 as Point;
+use dmpscope_core::geom;
+use dmpscope_core::rotation::QuatXyzw;
 use dmpscope_core::{PreparedDemo, Rollout};
 use glam::Vec3;
 
@@ -53,35 +54,32 @@ pub struct SceneInput<'a> {
     pub pixels_per_point: f32,
     /// A path an RL agent learned: (demo index, positions in demo
     /// coordinates), drawn gold on top.
-    pub learned: Option<(usize, &'a [Point])>,
+    pub learned: Option<(usize, &'a [geom::Vec3])>,
     /// A run at a new target, drawn white with its start and goal handles.
-    pub generalised: Option<SceneGen<'a>>,
+    pub generalised: Option<SceneTarget<'a>>,
     /// Per demo, its orientation on the unit-time grid (the raw target,
     /// method.md section 12), `None` without one.
-    pub demo_turns: &'a [Option<&'a [Quat]>],
+    pub demo_turns: &'a [Option<&'a [QuatXyzw]>],
     /// Per demo, its regenerated orientation (same grid), if shown.
-    pub regen_turns: &'a [Option<&'a [Quat]>],
+    pub regen_turns: &'a [Option<&'a [QuatXyzw]>],
     /// Draw orientation triads along the paths.
     pub triads: bool,
 }
 
-/// A quaternion `[x, y, z, w]`.
-pub type Quat = [f64; 4];
-
 /// A generalised run in the scene (absolute positions).
-pub struct SceneGen<'a> {
+pub struct SceneTarget<'a> {
     /// The path on the unit-time grid.
-    pub path: &'a [Point],
+    pub path: &'a [geom::Vec3],
     /// A skill's ±1 SD per axis (empty for a demo).
-    pub band: &'a [Point],
+    pub band: &'a [geom::Vec3],
     /// The start handle.
-    pub start: Point,
+    pub start: geom::Vec3,
     /// The goal handle.
-    pub goal: Point,
+    pub goal: geom::Vec3,
     /// The handle being dragged: 0 start, 1 goal.
     pub active: Option<usize>,
     /// Its orientation on the grid, where the run has one.
-    pub turns: Option<&'a [Quat]>,
+    pub turns: Option<&'a [QuatXyzw]>,
 }
 
 /// The scene's frame: the origin subtracted from world points and the box
@@ -89,7 +87,7 @@ pub struct SceneGen<'a> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
     /// World point at the scene origin.
-    pub origin: Point,
+    pub origin: geom::Vec3,
     /// The demos' box in scene coordinates.
     pub bounds: Bounds,
     /// The mean displacement from start to goal.
@@ -101,10 +99,10 @@ impl Frame {
     pub fn of(demos: &[PreparedDemo]) -> Option<Self> {
         let world = || demos.iter().flat_map(|d| d.y_raw.iter().map(|p| d.p0 + p));
         let first = world().find(|p| p.iter().all(|c| c.is_finite()))?;
-        let local = |p: Point| to_vec(p, first);
+        let local = |p: geom::Vec3| to_vec(p, first);
         let b = Bounds::around(world().map(local))?;
         let c = b.centre();
-        let origin = Point::new(
+        let origin = geom::Vec3::new(
             first[0] + f64::from(c.x),
             first[1] + f64::from(c.y),
             first[2] + f64::from(c.z),
@@ -115,7 +113,7 @@ impl Frame {
         };
         let sum = demos
             .iter()
-            .map(|d| to_vec(d.goal, Point::zeros()))
+            .map(|d| to_vec(d.goal, geom::Vec3::zeros()))
             .filter(|v| v.is_finite())
             .fold(Vec3::ZERO, |a, b| a + b);
         let motion = sum / demos.len().max(1) as f32;
@@ -127,7 +125,7 @@ impl Frame {
     }
 
     /// A world point in scene coordinates.
-    pub fn local(&self, p: Point) -> Vec3 {
+    pub fn local(&self, p: geom::Vec3) -> Vec3 {
         to_vec(p, self.origin)
     }
 
@@ -156,7 +154,7 @@ impl Frame {
     }
 }
 
-fn to_vec(p: Point, origin: Point) -> Vec3 {
+fn to_vec(p: geom::Vec3, origin: geom::Vec3) -> Vec3 {
     Vec3::new(
         (p[0] - origin[0]) as f32,
         (p[1] - origin[1]) as f32,
@@ -226,7 +224,7 @@ const TRIAD: [[f32; 3]; 3] = [[0.95, 0.3, 0.25], [0.3, 0.85, 0.35], [0.3, 0.55, 
 
 impl SegmentList {
     /// The body axes of orientation `q` at `p`, `length` long.
-    fn triad(&mut self, p: Vec3, q: Quat, length: f32, width: f32, alpha: f32) {
+    fn triad(&mut self, p: Vec3, q: QuatXyzw, length: f32, width: f32, alpha: f32) {
         let q = glam::Quat::from_xyzw(q[0] as f32, q[1] as f32, q[2] as f32, q[3] as f32);
         if !q.is_finite() || q.length_squared() < 1e-6 {
             return;
@@ -242,7 +240,7 @@ impl SegmentList {
     fn triads_along(
         &mut self,
         path: &[Vec3],
-        turns: &[Quat],
+        turns: &[QuatXyzw],
         spacing: f32,
         length: f32,
         width: f32,
@@ -329,7 +327,7 @@ pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
 }
 
 /// The orientation nearest unit time `t` on a grid.
-fn nearest(turns: &[Quat], t: f64) -> Option<Quat> {
+fn nearest(turns: &[QuatXyzw], t: f64) -> Option<QuatXyzw> {
     let last = turns.len().checked_sub(1)?;
     let k = (t.clamp(0.0, 1.0) * last as f64).round() as usize;
     turns.get(k.min(last)).copied()
@@ -482,10 +480,15 @@ fn demo_paths_and_markers(
 }
 
 /// A run at a new target `g`: its path, its band, its handles and its time cursor.
-fn generalised_run(out: &mut SegmentList, frame: &Frame, g: &SceneGen<'_>, input: &SceneInput<'_>) {
+fn generalised_run(
+    out: &mut SegmentList,
+    frame: &Frame,
+    g: &SceneTarget<'_>,
+    input: &SceneInput<'_>,
+) {
     let ppp = input.pixels_per_point;
     let dash = frame.bounds.radius() / 30.0;
-    let local = |p: &Point| frame.local(*p);
+    let local = |p: &geom::Vec3| frame.local(*p);
     let path: Vec<Vec3> = g.path.iter().map(local).collect();
     if g.band.len() == g.path.len() {
         for sign in [-1.0, 1.0] {
@@ -493,7 +496,7 @@ fn generalised_run(out: &mut SegmentList, frame: &Frame, g: &SceneGen<'_>, input
                 .path
                 .iter()
                 .zip(g.band)
-                .map(|(p, b)| local(&Point::from_fn(|a, _| p[a] + sign * b[a])))
+                .map(|(p, b)| local(&geom::Vec3::from_fn(|a, _| p[a] + sign * b[a])))
                 .collect();
             out.path(&edge, [1.0, 1.0, 1.0, 0.35], 1.0 * ppp, dash);
         }
@@ -537,7 +540,7 @@ mod tests {
     #[test]
     fn grid_steps_are_1_2_5() {
         let frame = |span: f32| Frame {
-            origin: Point::zeros(),
+            origin: geom::Vec3::zeros(),
             bounds: Bounds {
                 min: Vec3::ZERO,
                 max: Vec3::new(span, span / 2.0, 0.1),
@@ -579,18 +582,18 @@ mod tests {
         let path: Vec<Vec3> = (0..200)
             .map(|k| Vec3::new(k as f32 * 1e-3, 0.0, 0.0))
             .collect();
-        let turns: Vec<Quat> = (0..200)
+        let turns: Vec<QuatXyzw> = (0..200)
             .map(|k| {
                 let a = 0.004 * k as f64;
                 [0.3 * a.sin(), 0.2 * a.sin(), a.sin(), a.cos()]
             })
             .collect();
-        let flipped: Vec<Quat> = turns
+        let flipped: Vec<QuatXyzw> = turns
             .iter()
             .enumerate()
             .map(|(k, q)| if k % 3 == 0 { q.map(|c| -c) } else { *q })
             .collect();
-        let draw = |turns: &[Quat]| {
+        let draw = |turns: &[QuatXyzw]| {
             let mut list = SegmentList::default();
             list.triads_along(&path, turns, 0.02, 0.01, 1.0, 1.0);
             list.segments

@@ -7,6 +7,7 @@ use crate::extract::allowed::numbers::{num, percent};
 use crate::extract::allowed::region::Acceptable;
 use crate::extract::allowed::rule::{COMPLIANT_ZETA, Pick, PickRule};
 use crate::extract::optimum::Extraction;
+use crate::extract::point::GainPoint;
 use crate::extract::robot::RobotGains;
 use crate::landscape::grid::Landscape;
 use crate::landscape::model::{Model, zeta};
@@ -44,12 +45,7 @@ impl Context<'_> {
         let e = self.model.evaluate(dm, km);
         Ok(Pick {
             rule,
-            dm,
-            km,
-            zeta: e.zeta,
-            j: e.j(self.extraction.k),
-            s: e.s,
-            d_sum: e.d_sum,
+            at: GainPoint::of(&e, self.extraction.k),
             e_sum: e.e_sum.is_finite().then_some(e.e_sum),
             a_peak_max: e.a_peak.iter().copied().fold(0.0, f64::max),
             why: String::new(),

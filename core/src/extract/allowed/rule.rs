@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::extract::point::GainPoint;
 use crate::extract::robot::RobotGains;
 
 /// The default eps of the acceptable region (the flatness threshold).
@@ -66,18 +67,10 @@ impl std::str::FromStr for PickRule {
 pub struct Pick {
     /// The rule that chose it.
     pub rule: PickRule,
-    /// D/M.
-    pub dm: f64,
-    /// K/M.
-    pub km: f64,
-    /// Damping ratio.
-    pub zeta: f64,
-    /// J there.
-    pub j: f64,
-    /// S there.
-    pub s: f64,
-    /// sum d there, metres.
-    pub d_sum: f64,
+    /// The gains and J, S and sum d there (read through `Deref`:
+    /// `pick.dm`).
+    #[serde(flatten)]
+    pub at: GainPoint,
     /// E there, metres (`None` without a skill error).
     pub e_sum: Option<f64>,
     /// The largest a_peak of any demo there, m/s^2 of unit time.
@@ -115,5 +108,13 @@ impl Pick {
     pub(crate) fn with_why(mut self, why: String) -> Self {
         self.why = why;
         self
+    }
+}
+
+impl std::ops::Deref for Pick {
+    type Target = GainPoint;
+
+    fn deref(&self) -> &GainPoint {
+        &self.at
     }
 }

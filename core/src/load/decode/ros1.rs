@@ -94,12 +94,12 @@ pub fn decoder(schema_name: &str) -> Option<Box<dyn MessageDecoder>> {
 }
 
 /// Reads primitives from one ROS 1 message, unaligned and little-endian.
-struct Reader<'a> {
+struct Ros1Cursor<'a> {
     data: &'a [u8],
     pos: usize,
 }
 
-impl<'a> Reader<'a> {
+impl<'a> Ros1Cursor<'a> {
     fn new(data: &'a [u8]) -> Self {
         Self { data, pos: 0 }
     }
@@ -218,7 +218,7 @@ impl<'a> Reader<'a> {
 /// Decodes ROS 1 `geometry_msgs/PoseStamped`: header, then the pose
 /// (position and orientation).
 pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String> {
-    let mut r = Reader::new(message);
+    let mut r = Ros1Cursor::new(message);
     let stamp_ns = r.header()?;
     let (position, orientation) = r.pose()?;
     Ok(PoseSample::single(stamp_ns, position, Some(orientation)))
@@ -227,7 +227,7 @@ pub fn decode_pose_stamped(message: &[u8]) -> Result<PoseSample<'static>, String
 /// Decodes ROS 1 `geometry_msgs/PoseWithCovarianceStamped`: header, the
 /// pose, then the 36 covariance entries (read past, but they must be there).
 pub fn decode_pose_with_covariance_stamped(message: &[u8]) -> Result<PoseSample<'static>, String> {
-    let mut r = Reader::new(message);
+    let mut r = Ros1Cursor::new(message);
     let stamp_ns = r.header()?;
     let (position, orientation) = r.pose()?;
     r.skip_f64s(36, "pose.covariance")?;
@@ -237,7 +237,7 @@ pub fn decode_pose_with_covariance_stamped(message: &[u8]) -> Result<PoseSample<
 /// Decodes ROS 1 `geometry_msgs/PointStamped`: header, then the point (no
 /// orientation).
 pub fn decode_point_stamped(message: &[u8]) -> Result<PoseSample<'static>, String> {
-    let mut r = Reader::new(message);
+    let mut r = Ros1Cursor::new(message);
     let stamp_ns = r.header()?;
     let position = r.vec3(["point.x", "point.y", "point.z"])?;
     Ok(PoseSample::single(stamp_ns, position, None))
@@ -246,7 +246,7 @@ pub fn decode_point_stamped(message: &[u8]) -> Result<PoseSample<'static>, Strin
 /// Decodes ROS 1 `nav_msgs/Odometry`: header, child frame id, the pose
 /// with covariance (the sample), then the twist with covariance (read past).
 pub fn decode_odometry(message: &[u8]) -> Result<PoseSample<'static>, String> {
-    let mut r = Reader::new(message);
+    let mut r = Ros1Cursor::new(message);
     let stamp_ns = r.header()?;
     r.string("child_frame_id")?;
     let (position, orientation) = r.pose()?;
@@ -262,7 +262,7 @@ pub struct TransformStampedDecoder;
 
 impl MessageDecoder for TransformStampedDecoder {
     fn decode(&mut self, data: &[u8], out: &mut dyn FnMut(PoseSample<'_>)) -> Result<(), String> {
-        out(Reader::new(data).transform_stamped()?);
+        out(Ros1Cursor::new(data).transform_stamped()?);
         Ok(())
     }
 }
@@ -281,7 +281,7 @@ pub fn decode_tf_message(
 
 /// Walks the transforms of a `TFMessage`.
 fn each_transform(message: &[u8], out: &mut dyn FnMut(PoseSample<'_>)) -> Result<(), String> {
-    let mut r = Reader::new(message);
+    let mut r = Ros1Cursor::new(message);
     let count = r.u32("transforms (array length)")?;
     for i in 0..count {
         out(r

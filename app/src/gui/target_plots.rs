@@ -4,12 +4,12 @@
 //! axis; a skill's ±1 SD band around its position; the source at its own
 //! target dashed for comparison.
 
-use dmpscope_core::geom::Vec3 as Point;
+use dmpscope_core::geom::Vec3;
 use dmpscope_core::{Generalised, Rollout};
 use eframe::egui::{self, Color32};
 use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, PlotUi, VLine};
 
-use crate::session::GenView;
+use crate::session::TargetView;
 
 const AXES: [(&str, Color32); 3] = [
     ("x", Color32::from_rgb(230, 90, 80)),
@@ -33,7 +33,7 @@ pub struct OwnRun<'a> {
 }
 
 fn series(
-    values: &[Point],
+    values: &[Vec3],
     axis: usize,
     time: impl Fn(usize) -> f64,
     value: impl Fn(f64) -> f64,
@@ -50,7 +50,7 @@ fn series(
 
 /// Shows the three plots; `t` is the time cursor in unit time. Returns the
 /// unit time under the pointer while it is over a plot.
-pub fn show(ui: &mut egui::Ui, g: &GenView, own: Option<OwnRun<'_>>, t: f64) -> Option<f64> {
+pub fn show(ui: &mut egui::Ui, g: &TargetView, own: Option<OwnRun<'_>>, t: f64) -> Option<f64> {
     let o = &g.out;
     let tau = o.duration_s;
     let height = ((ui.available_height() - 12.0) / 3.0).max(60.0);
