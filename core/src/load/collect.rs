@@ -135,6 +135,11 @@ impl<'o> Collector<'o> {
         }
     }
 
+    /// The file's name in errors.
+    pub(crate) fn label(&self) -> &'o str {
+        self.label
+    }
+
     pub(crate) fn at(&self) -> Location {
         Location::file(self.label)
     }
@@ -151,6 +156,17 @@ impl<'o> Collector<'o> {
     }
 
     /// Whether a message failed to decode.
+    /// Whether messages of channel `id` are read (it was declared, and
+    /// dmpscope decodes its schema).
+    pub(crate) fn reads(&self, id: u16) -> bool {
+        matches!(self.channels.get(&id), Some(Some(_)))
+    }
+
+    /// Whether channel `id` was declared (read or not).
+    pub(crate) fn declared(&self, id: u16) -> bool {
+        self.channels.contains_key(&id)
+    }
+
     pub(crate) fn has_pending(&self) -> bool {
         self.pending.is_some()
     }

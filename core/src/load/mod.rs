@@ -9,7 +9,7 @@
 //!
 //! May use: nothing.
 
-pub mod chunks;
+pub mod access;
 pub mod collect;
 pub mod csv;
 pub mod decode;

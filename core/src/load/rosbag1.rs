@@ -1,24 +1,29 @@
-//! ROS 1 bags (format 2.0), read from bytes so the same code serves a file,
-//! a folder of bags and a browser upload.
+//! ROS 1 bags (format 2.0), read over random access
+//! ([`crate::load::access`]), so the same code serves a file, a folder of
+//! bags and a browser's file read in slices.
 //!
 //! A bag is a sequence of records, each a header (fields `name=value`, one
-//! of them the opcode `op`) and data. The reader walks them in order: chunks
-//! (uncompressed, bz2 or lz4) hold the connection records (topic, message
-//! type, message definition) and the messages; the index section at the end
-//! repeats the connections and lists the chunks. Walking in order needs no
-//! index, so a bag whose recording was killed (no index, a last chunk cut
-//! short) is read as far as it is valid, with a warning. Each connection
-//! becomes a channel of the shared [`Collector`], whose ROS 1 decoders, TF
-//! buffer and stream finishing are the MCAP reader's.
+//! of them the opcode `op`) and data. Chunks (uncompressed, bz2 or lz4) hold
+//! the connection records (topic, message type, message definition) and the
+//! messages; the index section at the end repeats the connections and lists
+//! the chunks with the connections each holds. Where the bag has its index
+//! the reader reads it first and then only the chunks that hold a
+//! connection dmpscope reads (of an uncompressed chunk only those
+//! messages, from the index records after it); without one (a recording
+//! killed: no index, a last chunk cut short) it walks the records in order,
+//! as far as they are valid, with a warning. Each connection becomes a
+//! channel of the shared [`Collector`], whose ROS 1 decoders, TF buffer
+//! and stream finishing are the MCAP reader's.
 
 use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::io::Read;
 
 use crate::error::{Error, Location, Result};
-use crate::load::collect::Collector;
-use crate::load::collect::Loaded;
+use crate::load::access::{ReadAt, SliceAt, block_on};
+use crate::load::collect::{Collector, Loaded};
 use crate::load::mcap::RECORD_LENGTH_LIMIT;
+use crate::load::mcap::linear::Window;
 use crate::load::options::LoadOptions;
 
 /// The first bytes of a format 2.0 bag.
@@ -28,7 +33,9 @@ pub const BAG_MAGIC: &[u8] = b"#ROSBAG V2.0\n";
 mod op {
     pub const MESSAGE_DATA: u8 = 0x02;
     pub const BAG_HEADER: u8 = 0x03;
+    pub const INDEX_DATA: u8 = 0x04;
     pub const CHUNK: u8 = 0x05;
+    pub const CHUNK_INFO: u8 = 0x06;
     pub const CONNECTION: u8 = 0x07;
 }
 
@@ -147,11 +154,57 @@ struct Walk {
 
 /// Loads the demos of a ROS 1 bag held in memory; `label` names the file.
 pub fn load_bag_bytes(label: &str, bytes: &[u8], options: &LoadOptions) -> Result<Loaded> {
+    block_on(read_bag(label, &mut SliceAt(bytes), options))
+}
+
+/// The bytes of the record at `pos`, through a window on the source, and
+/// the position after it; `Cut::Short` where the source ends inside it.
+async fn record_bytes<'w, R: ReadAt>(
+    w: &'w mut Window,
+    access: &mut R,
+    pos: u64,
+) -> std::result::Result<&'w [u8], Cut> {
+    let short = |_| Cut::Short;
+    let head = w.get(access, pos, 4).await.map_err(short)?;
+    let header_len = le32(head, 0).ok_or(Cut::Short)?;
+    if header_len > RECORD_LENGTH_LIMIT {
+        return Err(Cut::Bad(format!(
+            "a record header declares {header_len} bytes, more than the limit"
+        )));
+    }
+    let head = w.get(access, pos, 8 + header_len).await.map_err(short)?;
+    let data_len = le32(head, 4 + header_len).ok_or(Cut::Short)?;
+    if data_len > RECORD_LENGTH_LIMIT {
+        return Err(Cut::Bad(format!(
+            "a record declares {data_len} bytes of data, more than the limit"
+        )));
+    }
+    let total = 8 + header_len + data_len;
+    let bytes = w.get(access, pos, total).await.map_err(short)?;
+    if bytes.len() < total {
+        return Err(Cut::Short);
+    }
+    Ok(bytes)
+}
+
+/// Reads the demos of the ROS 1 bag `access` holds; `label` names the file.
+pub async fn read_bag<R: ReadAt>(
+    label: &str,
+    access: &mut R,
+    options: &LoadOptions,
+) -> Result<Loaded> {
     let at = || Location::file(label);
-    if !bytes.starts_with(BAG_MAGIC) {
+    let magic = access
+        .read_at(0, BAG_MAGIC.len())
+        .await
+        .map_err(|reason| Error::Io {
+            file: label.to_owned(),
+            reason,
+        })?;
+    if magic != BAG_MAGIC {
         return Err(Error::Bag {
             at: at(),
-            reason: if bytes.starts_with(b"#ROSBAG V1") {
+            reason: if magic.starts_with(b"#ROSBAG V1") {
                 "a ROS 1 bag of format 1.x; `rosbag reindex`/`rosbag fix` writes format 2.0"
                     .to_owned()
             } else {
@@ -160,20 +213,40 @@ pub fn load_bag_bytes(label: &str, bytes: &[u8], options: &LoadOptions) -> Resul
         });
     }
     let mut c = Collector::new(label, options);
+    if let Some(index) = bag_index(access).await {
+        let mut walk = Walk::default();
+        read_indexed(&mut c, &mut walk, access, &index)
+            .await
+            .map_err(|reason| Error::Bag { at: at(), reason })?;
+        if let Some(e) = c.take_pending() {
+            return Err(e);
+        }
+        return finish(c, walk, None, label);
+    }
+    walk_bag(c, access, label).await
+}
+
+/// Walks the records of a bag in order, as far as they are valid.
+async fn walk_bag<R: ReadAt>(mut c: Collector<'_>, access: &mut R, label: &str) -> Result<Loaded> {
+    let at = || Location::file(label);
     let mut walk = Walk::default();
-    let mut pos = BAG_MAGIC.len();
+    let mut pos = BAG_MAGIC.len() as u64;
     let mut truncated = None;
-    while pos < bytes.len() {
-        let (record, next) = match record_at(bytes, pos) {
-            Ok(r) => r,
+    let mut w = Window::new();
+    loop {
+        if w.get(access, pos, 1).await.map_or(true, <[u8]>::is_empty) {
+            break;
+        }
+        let bytes = match record_bytes(&mut w, access, pos).await {
+            Ok(b) => b,
             Err(Cut::Short) => {
-                truncated = Some(pos);
+                truncated = Some(pos as usize);
                 break;
             }
             // Past an open chunk of a killed recording the bytes are its
             // compressed contents, not records: the tail.
             Err(Cut::Bad(_)) if walk.index_pos == 0 && walk.messages > 0 => {
-                truncated = Some(pos);
+                truncated = Some(pos as usize);
                 break;
             }
             Err(Cut::Bad(reason)) => {
@@ -183,10 +256,23 @@ pub fn load_bag_bytes(label: &str, bytes: &[u8], options: &LoadOptions) -> Resul
                 });
             }
         };
+        let (record, len) = match record_at(bytes, 0) {
+            Ok(r) => r,
+            Err(Cut::Bad(reason)) if walk.index_pos != 0 || walk.messages == 0 => {
+                return Err(Error::Bag {
+                    at: at(),
+                    reason: format!("{reason} (byte {pos}): the bag is corrupt"),
+                });
+            }
+            Err(_) => {
+                truncated = Some(pos as usize);
+                break;
+            }
+        };
         if walk.index_pos == 0 && open_compressed_chunk(&record) {
             // rosbag writes a chunk's header with size 0 and fills it in
             // when the chunk closes: this one never closed.
-            truncated = Some(pos);
+            truncated = Some(pos as usize);
             break;
         }
         let taken = take(&mut c, &mut walk, &record).map_err(|reason| Error::Bag {
@@ -197,17 +283,246 @@ pub fn load_bag_bytes(label: &str, bytes: &[u8], options: &LoadOptions) -> Resul
             // A last chunk that does not open in a bag whose recording was
             // killed is the cut-off tail.
             Err(_) if walk.index_pos == 0 && record.op() == Some(op::CHUNK) => {
-                truncated = Some(pos);
+                truncated = Some(pos as usize);
                 break;
             }
             other => other?,
         }
-        pos = next;
+        pos += len as u64;
     }
     if let Some(e) = c.take_pending() {
         return Err(e);
     }
     finish(c, walk, truncated, label)
+}
+
+/// What a bag's index section says: its connections (their records'
+/// bytes) and its chunks (position, and the connections each holds).
+struct BagIndex {
+    connections: Vec<Vec<u8>>,
+    chunks: Vec<(u64, Vec<u32>)>,
+    index_pos: u64,
+    chunk_count: u64,
+}
+
+/// The bag's index, when it has one that holds together (else the walk
+/// reads it).
+async fn bag_index<R: ReadAt>(access: &mut R) -> Option<BagIndex> {
+    let size = access.size()?;
+    let mut w = Window::new();
+    let header = record_bytes(&mut w, access, BAG_MAGIC.len() as u64)
+        .await
+        .ok()?;
+    let (record, _) = record_at(header, 0).ok()?;
+    if record.op() != Some(op::BAG_HEADER) {
+        return None;
+    }
+    let index_pos = record.u64("index_pos").ok()?;
+    let chunk_count = u64::from(record.u32("chunk_count").ok()?);
+    if index_pos == 0 || index_pos >= size || size - index_pos > RECORD_LENGTH_LIMIT as u64 {
+        return None;
+    }
+    let bytes = access
+        .read_at(index_pos, (size - index_pos) as usize)
+        .await
+        .ok()?;
+    let mut index = BagIndex {
+        connections: Vec::new(),
+        chunks: Vec::new(),
+        index_pos,
+        chunk_count,
+    };
+    let mut pos = 0;
+    while pos < bytes.len() {
+        let (record, next) = record_at(&bytes, pos).ok()?;
+        match record.op() {
+            Some(op::CONNECTION) => index.connections.push(bytes[pos..next].to_vec()),
+            Some(op::CHUNK_INFO) => {
+                let chunk_pos = record.u64("chunk_pos").ok()?;
+                let conns = record
+                    .data
+                    .chunks_exact(8)
+                    .filter_map(|e| le32(e, 0).map(|c| c as u32))
+                    .collect();
+                index.chunks.push((chunk_pos, conns));
+            }
+            _ => {}
+        }
+        pos = next;
+    }
+    index.chunks.sort_by_key(|c| c.0);
+    let fits = index
+        .chunks
+        .iter()
+        .all(|&(p, _)| p > BAG_MAGIC.len() as u64 && p < index_pos);
+    (fits && !index.chunks.is_empty()).then_some(index)
+}
+
+/// Reads the chunks of an indexed bag that hold a connection the collector
+/// reads: an error names the chunk (1-based, in file order).
+async fn read_indexed<R: ReadAt>(
+    c: &mut Collector<'_>,
+    walk: &mut Walk,
+    access: &mut R,
+    index: &BagIndex,
+) -> std::result::Result<(), String> {
+    walk.index_pos = index.index_pos;
+    walk.chunk_count = index.chunk_count;
+    for bytes in &index.connections {
+        let (record, _) =
+            record_at(bytes, 0).map_err(|_| "a connection record is cut short".to_owned())?;
+        connection(c, walk, &record).map_err(|e| e.to_string())?;
+    }
+    let mut w = Window::new();
+    for (k, (chunk_pos, conns)) in index.chunks.iter().enumerate() {
+        // `take` counts a chunk it opens; the others are counted here.
+        walk.chunks = k;
+        let wanted = conns.is_empty()
+            || conns
+                .iter()
+                .any(|conn| walk.ids.get(conn).is_none_or(|&id| c.reads(id)));
+        if wanted {
+            let next = index.chunks.get(k + 1).map_or(index.index_pos, |n| n.0);
+            read_chunk(c, walk, access, &mut w, *chunk_pos, next)
+                .await
+                .map_err(|e| {
+                    format!(
+                        "chunk {}: {e} (the record at byte {chunk_pos}); the bag is corrupt",
+                        k + 1
+                    )
+                })?;
+        }
+        walk.chunks = k + 1;
+    }
+    Ok(())
+}
+
+/// Reads one chunk at `pos` (its index records end at `next`): an
+/// uncompressed chunk's wanted messages where its index records list them,
+/// else the whole chunk.
+async fn read_chunk<R: ReadAt>(
+    c: &mut Collector<'_>,
+    walk: &mut Walk,
+    access: &mut R,
+    w: &mut Window,
+    pos: u64,
+    next: u64,
+) -> std::result::Result<(), String> {
+    let head = w.get(access, pos, 4).await.map_err(|e| e.to_string())?;
+    let header_len = le32(head, 0).ok_or("cut short")?;
+    if header_len > RECORD_LENGTH_LIMIT {
+        return Err("its header declares more bytes than the limit".into());
+    }
+    let head = w
+        .get(access, pos, 8 + header_len)
+        .await
+        .map_err(|e| e.to_string())?;
+    let header = fields(head.get(4..4 + header_len).ok_or("cut short")?)?;
+    let compression = header
+        .get(&b"compression"[..])
+        .map(|v| String::from_utf8_lossy(v).into_owned());
+    let data_len = le32(head, 4 + header_len).ok_or("cut short")? as u64;
+    let data_at = pos + 8 + header_len as u64;
+    let end = data_at + data_len;
+    if compression.as_deref() == Some("none") && end <= next {
+        let offsets = wanted_offsets(c, walk, access, end, next).await?;
+        if let Some(offsets) = offsets {
+            return plain_messages(c, walk, access, w, data_at, data_len, offsets).await;
+        }
+    }
+    let bytes = record_bytes(w, access, pos)
+        .await
+        .map_err(|cut| match cut {
+            Cut::Short => "the bag ends inside it".to_owned(),
+            Cut::Bad(reason) => reason,
+        })?;
+    let (record, _) = record_at(bytes, 0).map_err(|_| "cut short".to_owned())?;
+    let prefix = format!("chunk {}: ", walk.chunks + 1);
+    take(c, walk, &record).map_err(|e| e.trim_start_matches(&prefix).to_owned())
+}
+
+/// The offsets (in the chunk's records) of the messages on connections the
+/// collector reads, from the index records between `from` and `to`;
+/// `None` when they do not hold together (the chunk is then read whole).
+async fn wanted_offsets<R: ReadAt>(
+    c: &Collector<'_>,
+    walk: &Walk,
+    access: &mut R,
+    from: u64,
+    to: u64,
+) -> std::result::Result<Option<Vec<u32>>, String> {
+    if to - from > RECORD_LENGTH_LIMIT as u64 {
+        return Ok(None);
+    }
+    let bytes = access
+        .read_at(from, (to - from) as usize)
+        .await
+        .map_err(|e| e.to_string())?;
+    let mut offsets = Vec::new();
+    let mut pos = 0;
+    while pos < bytes.len() {
+        let Ok((record, next)) = record_at(&bytes, pos) else {
+            return Ok(None);
+        };
+        if record.op() != Some(op::INDEX_DATA) {
+            return Ok(None);
+        }
+        let Ok(conn) = record.u32("conn") else {
+            return Ok(None);
+        };
+        match walk.ids.get(&conn) {
+            Some(&id) if !c.reads(id) => {}
+            Some(_) => offsets.extend(
+                record
+                    .data
+                    .chunks_exact(12)
+                    .filter_map(|e| le32(e, 8).map(|o| o as u32)),
+            ),
+            None => return Ok(None),
+        }
+        pos = next;
+    }
+    offsets.sort_unstable();
+    offsets.dedup();
+    Ok(Some(offsets))
+}
+
+/// The messages at `offsets` in an uncompressed chunk's records.
+#[allow(clippy::too_many_arguments)]
+async fn plain_messages<R: ReadAt>(
+    c: &mut Collector<'_>,
+    walk: &mut Walk,
+    access: &mut R,
+    w: &mut Window,
+    data_at: u64,
+    data_len: u64,
+    offsets: Vec<u32>,
+) -> std::result::Result<(), String> {
+    for off in offsets {
+        let off = u64::from(off);
+        if off >= data_len {
+            return Err(format!(
+                "an index record points at byte {off} of {data_len}"
+            ));
+        }
+        let bytes = record_bytes(w, access, data_at + off)
+            .await
+            .map_err(|cut| match cut {
+                Cut::Short => "the bag ends inside it".to_owned(),
+                Cut::Bad(reason) => reason,
+            })?;
+        if off + bytes.len() as u64 > data_len {
+            return Err(format!("a message at byte {off} runs past the chunk"));
+        }
+        let (record, _) = record_at(bytes, 0).map_err(|_| "cut short".to_owned())?;
+        if record.op() != Some(op::MESSAGE_DATA) {
+            return Err(format!(
+                "an index record points at byte {off}, which is not a message"
+            ));
+        }
+        take_inner(c, walk, &record)?;
+    }
+    Ok(())
 }
 
 /// A compressed chunk whose header still says size 0 and holds no data (a

@@ -202,7 +202,12 @@ pub fn read_file(path: &Path, label: &str, options: &LoadOptions) -> Result<Load
             })?;
         return load_reader(label, decoder, options);
     }
-    load_reader(label, buffered, options)
+    drop(buffered);
+    let mut file = crate::load::access::FileAt::open(path).map_err(|reason| Error::Io {
+        file: label.to_owned(),
+        reason,
+    })?;
+    crate::load::access::block_on(crate::load::mcap::read_mcap(label, &mut file, options))
 }
 
 /// Reads a bag's files as one recording: the streams of each topic joined

@@ -7,14 +7,15 @@
 use std::path::Path;
 
 use crate::error::{Error, Result};
+use crate::load::access::{FileAt, ForwardAt, ReadAt, SliceAt, block_on};
 use crate::load::collect::Loaded;
 use crate::load::csv::load_csv;
 use crate::load::demo::RawDemo;
 use crate::load::formats;
 use crate::load::formats::Reader;
-use crate::load::mcap::load_bytes_with;
+use crate::load::mcap::{RECORD_LENGTH_LIMIT, read_mcap};
 use crate::load::options::LoadOptions;
-use crate::load::rosbag1::load_bag_bytes;
+use crate::load::rosbag1::read_bag;
 use crate::load::rosbag2;
 use crate::load::rosbag2::{Folder, ROSBAG2_METADATA};
 use crate::notice::Notice;
@@ -63,27 +64,7 @@ pub fn load_streams(
 
 fn read_streams(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Result<SourceStreams> {
     match data {
-        SourceData::Bytes(bytes) => match formats::detect(name, bytes).reader {
-            Reader::Csv => {
-                let text = std::str::from_utf8(bytes).map_err(|e| Error::Source {
-                    path: name.to_owned(),
-                    reason: format!("not UTF-8 text: {e}"),
-                })?;
-                csv_demo(name, text, options)
-            }
-            Reader::ZstdMcap => {
-                let inflated = zstd::stream::decode_all(bytes).map_err(|e| Error::Source {
-                    path: name.to_owned(),
-                    reason: format!(
-                        "a zstd-compressed file that does not decompress ({e}); `zstd -d` \
-                         writes an uncompressed copy"
-                    ),
-                })?;
-                Ok(from_mcap(name, load_bytes_with(name, &inflated, options)?))
-            }
-            Reader::Mcap => Ok(from_mcap(name, load_bytes_with(name, bytes, options)?)),
-            Reader::Bag => Ok(from_mcap(name, load_bag_bytes(name, bytes, options)?)),
-        },
+        SourceData::Bytes(bytes) => block_on(read_source(name, &mut SliceAt(bytes), options)),
         SourceData::Path(path) => {
             let path = folder_of_metadata(path).unwrap_or(path);
             if path.is_dir() {
@@ -92,6 +73,93 @@ fn read_streams(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Resu
             read_file(path, name, options)
         }
     }
+}
+
+/// Loads the streams of one recording file through `access` (its bytes
+/// wherever they are: memory, a file, a browser's `File` read in slices),
+/// as [`load_streams`] does: `name`'s suffix picks the reader, else the
+/// first bytes do.
+pub async fn load_streams_at<R: ReadAt>(
+    name: &str,
+    access: &mut R,
+    options: &LoadOptions,
+) -> Result<SourceStreams> {
+    let mut loaded = read_source(name, access, options).await?;
+    for demo in &mut loaded.demos {
+        options.units.apply(demo);
+    }
+    Ok(loaded)
+}
+
+/// The streams of one recording file read through `access`.
+async fn read_source<R: ReadAt>(
+    name: &str,
+    access: &mut R,
+    options: &LoadOptions,
+) -> Result<SourceStreams> {
+    let io = |reason| Error::Io {
+        file: name.to_owned(),
+        reason,
+    };
+    let head = access.read_at(0, 16).await.map_err(io)?;
+    match formats::detect(name, &head).reader {
+        Reader::Csv => {
+            let bytes = whole(name, access).await?;
+            let text = std::str::from_utf8(&bytes).map_err(|e| Error::Source {
+                path: name.to_owned(),
+                reason: format!("not UTF-8 text: {e}"),
+            })?;
+            csv_demo(name, text, options)
+        }
+        Reader::ZstdMcap => {
+            let bytes = whole(name, access).await?;
+            let decoder =
+                zstd::stream::read::Decoder::new(&bytes[..]).map_err(|e| not_zstd(name, &e))?;
+            let loaded = read_mcap(name, &mut ForwardAt::new(decoder), options).await;
+            Ok(from_mcap(
+                name,
+                loaded.map_err(|e| match e {
+                    Error::Io { reason, .. } => not_zstd(name, &reason),
+                    other => other,
+                })?,
+            ))
+        }
+        Reader::Mcap => Ok(from_mcap(name, read_mcap(name, access, options).await?)),
+        Reader::Bag => Ok(from_mcap(name, read_bag(name, access, options).await?)),
+    }
+}
+
+/// A zstd-compressed file that does not decompress, in words.
+fn not_zstd(name: &str, e: &dyn std::fmt::Display) -> Error {
+    Error::Source {
+        path: name.to_owned(),
+        reason: format!(
+            "a zstd-compressed file that does not decompress ({e}); `zstd -d` \
+             writes an uncompressed copy"
+        ),
+    }
+}
+
+/// The whole of a file that is read whole (CSV text, a zstd-compressed
+/// MCAP), within the limit of one record.
+async fn whole<R: ReadAt>(name: &str, access: &mut R) -> Result<Vec<u8>> {
+    let size = access.size().unwrap_or(0);
+    if size > RECORD_LENGTH_LIMIT as u64 {
+        return Err(Error::Source {
+            path: name.to_owned(),
+            reason: format!(
+                "{size} bytes, more than the {RECORD_LENGTH_LIMIT} bytes a CSV or a \
+                 zstd-compressed file may hold (decompress it, or split it)"
+            ),
+        });
+    }
+    access
+        .read_at(0, size as usize)
+        .await
+        .map_err(|reason| Error::Io {
+            file: name.to_owned(),
+            reason,
+        })
 }
 
 fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceStreams> {
@@ -196,8 +264,11 @@ fn read_file(path: &Path, label: &str, options: &LoadOptions) -> Result<SourceSt
             csv_demo(label, &text, options)
         }
         Some(Reader::Bag) => {
-            let bytes = std::fs::read(path).map_err(io)?;
-            Ok(from_mcap(label, load_bag_bytes(label, &bytes, options)?))
+            let mut file = FileAt::open(path).map_err(io)?;
+            Ok(from_mcap(
+                label,
+                block_on(read_bag(label, &mut file, options))?,
+            ))
         }
         _ => Ok(from_mcap(label, rosbag2::read_file(path, label, options)?)),
     }
