@@ -42,12 +42,31 @@ pub struct Args {
     /// and SciPy: `DMPSCOPE_PYTHON`, else `python3`).
     #[arg(long)]
     vs_numpy: bool,
+    /// Instead: how fast the demos of this recording are read, against the
+    /// PyPI `mcap` reader iterating `--topic` (skipped without `--topic`)
+    /// and against reading its bytes once, with the share of the file read
+    /// and the peak memory.
+    #[arg(long, value_name = "FILE")]
+    read: Option<PathBuf>,
+    /// The pose topic the PyPI reader iterates (`--read`).
+    #[arg(long, requires = "read")]
+    topic: Option<String>,
+    /// Reads FILE once and prints what it took as JSON (`--read`'s child).
+    #[arg(long, value_name = "FILE", hide = true)]
+    read_once: Option<PathBuf>,
 }
 
 /// Times the landscape and the operating point; prints medians in ms.
 pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(messages) = args.ingest {
         return super::bench_ingest::run(messages, args.repeat);
+    }
+    if let Some(path) = &args.read_once {
+        return super::bench_read::read_once(path);
+    }
+    if let Some(path) = &args.read {
+        let topic = args.topic.as_deref().unwrap_or("");
+        return super::bench_read::run(path, topic, args.repeat.clamp(1, 9), args.topic.is_some());
     }
     if args.vs_numpy {
         return vs_numpy(args.grid, args.repeat.clamp(1, 5));

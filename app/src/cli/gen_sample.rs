@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use dmpscope_core::export::write::{BulkTopic, TopicSamples, write_pose_stamped_with_bulk};
+use dmpscope_core::synth::lab::{CAMERA_TOPIC, LabTake, POSE_TOPIC, write_lab_take};
 use dmpscope_core::synth::planted::planted_demos;
 use dmpscope_core::synth::planted_forcing::PlantedSpec;
 use dmpscope_core::synth::vive::{SynthDemo, reach_demos};
@@ -42,6 +43,15 @@ pub struct Args {
     /// (a large recording in which the poses are a small part).
     #[arg(long, value_name = "MB", default_value_t = 0)]
     padding_mb: usize,
+    /// Instead: a lab take of this many seconds, a tracker's poses
+    /// (`/tracker/pose`, 250 Hz) beside a 640x480 rgb8 camera
+    /// (`/camera/image_raw`, 30 Hz) in time order, in chunks of
+    /// `--chunk-mb` (72 s is about 2 GB).
+    #[arg(long, value_name = "SECONDS")]
+    lab: Option<f64>,
+    /// The lab take's chunk size, MiB.
+    #[arg(long, default_value_t = 4, requires = "lab")]
+    chunk_mb: u64,
 }
 
 /// How planted demos share their forcing term.
@@ -58,6 +68,9 @@ const EPOCH_NS: i64 = 1_763_805_600_000_000_000;
 
 /// Generates the demos and writes them on `/demo_01`, `/demo_02`, ...
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if let Some(seconds) = args.lab {
+        return write_lab(&args, seconds);
+    }
     if args.demos == 0 || args.demos > 99 {
         anyhow::bail!("--demos must be 1 to 99, got {}", args.demos);
     }
@@ -157,4 +170,29 @@ fn print_what_was_written(args: &Args, demos: &[SynthDemo], topics: &[String]) {
             corrected.join(", ")
         }
     );
+}
+
+/// Writes a lab take to `--out`.
+fn write_lab(args: &Args, seconds: f64) -> anyhow::Result<()> {
+    if !(seconds.is_finite() && seconds > 0.0 && seconds <= 3600.0) {
+        anyhow::bail!("--lab takes 0 to 3600 seconds, got {seconds}");
+    }
+    let take = LabTake {
+        seconds,
+        zstd: !args.uncompressed,
+        chunk_size: args.chunk_mb.clamp(1, 256) << 20,
+        seed: args.seed,
+        ..LabTake::default()
+    };
+    let file = std::fs::File::create(&args.out)
+        .with_context(|| format!("{}: cannot create", args.out.display()))?;
+    let out = std::io::BufWriter::with_capacity(8 << 20, file);
+    write_lab_take(out, &take).with_context(|| format!("{}: cannot write", args.out.display()))?;
+    let size = std::fs::metadata(&args.out).map_or(0, |m| m.len());
+    eprintln!(
+        "wrote {} ({:.2} GB): {seconds} s of {POSE_TOPIC} at 250 Hz beside {CAMERA_TOPIC} at 30 Hz",
+        args.out.display(),
+        size as f64 * 1e-9
+    );
+    Ok(())
 }

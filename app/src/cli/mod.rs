@@ -3,6 +3,7 @@
 
 mod bench;
 mod bench_ingest;
+mod bench_read;
 mod extract;
 mod gen_sample;
 mod info;

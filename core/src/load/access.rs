@@ -19,19 +19,33 @@ use std::sync::{Arc, Mutex, PoisonError};
 use std::task::{Context, Poll, Waker};
 
 /// Random access to a recording's bytes.
-pub trait ReadAt {
+pub trait ReadAt: Send {
     /// The size in bytes; `None` for a stream read forward only (no index
     /// can be found at its end: it is read linearly).
     fn size(&self) -> Option<u64>;
 
-    /// `len` bytes at `offset`: fewer only where the source ends. A
-    /// forward-only source accepts only offsets at or past the last read's
-    /// end.
+    /// `len` bytes at `offset` into `buf` (its contents replaced, its
+    /// capacity reused): fewer only where the source ends. A forward-only
+    /// source accepts only offsets at or past the last read's end.
+    fn read_into(
+        &mut self,
+        offset: u64,
+        len: usize,
+        buf: &mut Vec<u8>,
+    ) -> impl Future<Output = io::Result<()>> + Send;
+
+    /// `len` bytes at `offset`, in a new buffer.
     fn read_at(
         &mut self,
         offset: u64,
         len: usize,
-    ) -> impl Future<Output = io::Result<Vec<u8>>> + Send;
+    ) -> impl Future<Output = io::Result<Vec<u8>>> + Send {
+        async move {
+            let mut buf = Vec::new();
+            self.read_into(offset, len, &mut buf).await?;
+            Ok(buf)
+        }
+    }
 }
 
 /// The bytes of a slice.
@@ -43,16 +57,19 @@ impl ReadAt for SliceAt<'_> {
         Some(self.0.len() as u64)
     }
 
-    fn read_at(
+    fn read_into(
         &mut self,
         offset: u64,
         len: usize,
-    ) -> impl Future<Output = io::Result<Vec<u8>>> + Send {
+        buf: &mut Vec<u8>,
+    ) -> impl Future<Output = io::Result<()>> + Send {
         let start = usize::try_from(offset)
             .unwrap_or(usize::MAX)
             .min(self.0.len());
         let end = start.saturating_add(len).min(self.0.len());
-        std::future::ready(Ok(self.0[start..end].to_vec()))
+        buf.clear();
+        buf.extend_from_slice(&self.0[start..end]);
+        std::future::ready(Ok(()))
     }
 }
 
@@ -72,11 +89,12 @@ impl FileAt {
         Ok(Self { file, size })
     }
 
-    fn read_blocking(&mut self, offset: u64, len: usize) -> io::Result<Vec<u8>> {
+    fn read_blocking(&mut self, offset: u64, len: usize, buf: &mut Vec<u8>) -> io::Result<()> {
         let len = usize::try_from(self.size.saturating_sub(offset))
             .unwrap_or(usize::MAX)
             .min(len);
-        let mut buf = vec![0; len];
+        buf.clear();
+        buf.resize(len, 0);
         let mut done = 0;
         while done < len {
             match read_file_at(&mut self.file, &mut buf[done..], offset + done as u64) {
@@ -87,7 +105,7 @@ impl FileAt {
             }
         }
         buf.truncate(done);
-        Ok(buf)
+        Ok(())
     }
 }
 
@@ -108,12 +126,13 @@ impl ReadAt for FileAt {
         Some(self.size)
     }
 
-    fn read_at(
+    fn read_into(
         &mut self,
         offset: u64,
         len: usize,
-    ) -> impl Future<Output = io::Result<Vec<u8>>> + Send {
-        std::future::ready(self.read_blocking(offset, len))
+        buf: &mut Vec<u8>,
+    ) -> impl Future<Output = io::Result<()>> + Send {
+        std::future::ready(self.read_blocking(offset, len, buf))
     }
 }
 
@@ -130,7 +149,8 @@ impl<R: io::Read> ForwardAt<R> {
         Self { inner, pos: 0 }
     }
 
-    fn read_blocking(&mut self, offset: u64, len: usize) -> io::Result<Vec<u8>> {
+    fn read_blocking(&mut self, offset: u64, len: usize, buf: &mut Vec<u8>) -> io::Result<()> {
+        buf.clear();
         if offset < self.pos {
             return Err(io::Error::other(format!(
                 "a stream read forward only was asked for byte {offset} after byte {}",
@@ -143,12 +163,11 @@ impl<R: io::Read> ForwardAt<R> {
         )?;
         self.pos += skipped;
         if self.pos < offset {
-            return Ok(Vec::new());
+            return Ok(());
         }
-        let mut buf = Vec::new();
-        io::Read::read_to_end(&mut io::Read::take(&mut self.inner, len as u64), &mut buf)?;
+        io::Read::read_to_end(&mut io::Read::take(&mut self.inner, len as u64), buf)?;
         self.pos += buf.len() as u64;
-        Ok(buf)
+        Ok(())
     }
 }
 
@@ -157,12 +176,13 @@ impl<R: io::Read + Send> ReadAt for ForwardAt<R> {
         None
     }
 
-    fn read_at(
+    fn read_into(
         &mut self,
         offset: u64,
         len: usize,
-    ) -> impl Future<Output = io::Result<Vec<u8>>> + Send {
-        std::future::ready(self.read_blocking(offset, len))
+        buf: &mut Vec<u8>,
+    ) -> impl Future<Output = io::Result<()>> + Send {
+        std::future::ready(self.read_blocking(offset, len, buf))
     }
 }
 
@@ -196,11 +216,12 @@ impl ReadAt for RemoteAt {
         Some(self.size)
     }
 
-    fn read_at(
+    fn read_into(
         &mut self,
         offset: u64,
         len: usize,
-    ) -> impl Future<Output = io::Result<Vec<u8>>> + Send {
+        buf: &mut Vec<u8>,
+    ) -> impl Future<Output = io::Result<()>> + Send {
         let exchange = Arc::clone(&self.exchange);
         let mut asked = false;
         std::future::poll_fn(move |_| {
@@ -214,7 +235,8 @@ impl ReadAt for RemoteAt {
             match e.answer.take() {
                 Some(Ok(bytes)) => {
                     e.request = None;
-                    Poll::Ready(Ok(bytes))
+                    *buf = bytes;
+                    Poll::Ready(Ok(()))
                 }
                 Some(Err(why)) => {
                     e.request = None;
@@ -258,25 +280,27 @@ impl<R: ReadAt> Metered<R> {
     }
 }
 
-impl<R: ReadAt + Send> ReadAt for Metered<R> {
+impl<R: ReadAt> ReadAt for Metered<R> {
     fn size(&self) -> Option<u64> {
         self.inner.size()
     }
 
-    fn read_at(
+    fn read_into(
         &mut self,
         offset: u64,
         len: usize,
-    ) -> impl Future<Output = io::Result<Vec<u8>>> + Send {
+        buf: &mut Vec<u8>,
+    ) -> impl Future<Output = io::Result<()>> + Send {
         let meter = Arc::clone(&self.meter);
-        let read = self.inner.read_at(offset, len);
+        let cancelled = meter.cancel.load(Ordering::Relaxed);
+        let inner = &mut self.inner;
         async move {
-            if meter.cancel.load(Ordering::Relaxed) {
+            if cancelled {
                 return Err(io::Error::new(io::ErrorKind::Interrupted, "cancelled"));
             }
-            let bytes = read.await?;
-            meter.read.fetch_add(bytes.len() as u64, Ordering::Relaxed);
-            Ok(bytes)
+            inner.read_into(offset, len, buf).await?;
+            meter.read.fetch_add(buf.len() as u64, Ordering::Relaxed);
+            Ok(())
         }
     }
 }

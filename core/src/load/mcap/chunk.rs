@@ -92,54 +92,92 @@ impl ChunkHead {
     pub const MAX_PREFIX: usize = 32 + 64 + 8;
 }
 
-/// A chunk's records, decompressed (at most to the size its header
-/// declares, which must be within `limit`) and CRC-checked.
-pub fn open<'a>(
+/// Opens a chunk's records: decompressed into `out` (at most to the size
+/// its header declares, which must be within `limit`; `Ok(true)`), or
+/// left where they are when the chunk is uncompressed (`Ok(false)`);
+/// CRC-checked either way.
+pub fn open_into(
     head: &ChunkHead,
-    records: &'a [u8],
+    records: &[u8],
     limit: usize,
-) -> Result<Cow<'a, [u8]>, ChunkError> {
+    out: &mut Vec<u8>,
+) -> Result<bool, ChunkError> {
     let size = usize::try_from(head.uncompressed_size)
         .ok()
         .filter(|&s| s <= limit)
         .ok_or(ChunkError::Mcap(McapError::ChunkTooLarge(
             head.uncompressed_size,
         )))?;
-    let out = match head.compression.as_str() {
-        "" => Cow::Borrowed(records),
-        "zstd" => Cow::Owned(inflate_zstd(records, size)?),
-        "lz4" => Cow::Owned(inflate_lz4(records, size)?),
+    match head.compression.as_str() {
+        "" => {
+            check_crc(head.uncompressed_crc, records)?;
+            return Ok(false);
+        }
+        "zstd" => inflate_zstd(records, size, out)?,
+        "lz4" => inflate_lz4(records, size, out)?,
         other => {
             return Err(ChunkError::NotRecords(format!(
                 "a chunk compressed with {other:?}, which MCAP readers do not know"
             )));
         }
-    };
-    check_crc(head.uncompressed_crc, &out)?;
-    Ok(out)
+    }
+    check_crc(head.uncompressed_crc, out)?;
+    Ok(true)
 }
 
-fn inflate_zstd(records: &[u8], size: usize) -> Result<Vec<u8>, ChunkError> {
-    let out = zstd::bulk::decompress(records, size).map_err(|e| {
+/// A chunk's records, decompressed and CRC-checked (see [`open_into`]).
+pub fn open<'a>(
+    head: &ChunkHead,
+    records: &'a [u8],
+    limit: usize,
+) -> Result<Cow<'a, [u8]>, ChunkError> {
+    let mut out = Vec::new();
+    Ok(if open_into(head, records, limit, &mut out)? {
+        Cow::Owned(out)
+    } else {
+        Cow::Borrowed(records)
+    })
+}
+
+thread_local! {
+    /// A zstd decompression context per thread, reused chunk after chunk.
+    static ZSTD: std::cell::RefCell<Option<zstd::bulk::Decompressor<'static>>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+fn inflate_zstd(records: &[u8], size: usize, out: &mut Vec<u8>) -> Result<(), ChunkError> {
+    out.clear();
+    out.reserve(size);
+    let written = ZSTD.with(|cell| {
+        let mut cell = cell.borrow_mut();
+        if cell.is_none() {
+            *cell = zstd::bulk::Decompressor::new().ok();
+        }
+        match cell.as_mut() {
+            Some(d) => d.decompress_to_buffer(records, out),
+            None => Err(std::io::Error::other("no zstd context")),
+        }
+    });
+    let written = written.map_err(|e| {
         ChunkError::NotRecords(format!(
             "a zstd chunk does not decompress to its declared {size} bytes ({e})"
         ))
     })?;
-    if out.len() != size {
+    if written != size {
         return Err(ChunkError::NotRecords(format!(
-            "a zstd chunk decompresses to {} bytes, its header says {size}",
-            out.len()
+            "a zstd chunk decompresses to {written} bytes, its header says {size}"
         )));
     }
-    Ok(out)
+    Ok(())
 }
 
-fn inflate_lz4(records: &[u8], size: usize) -> Result<Vec<u8>, ChunkError> {
+fn inflate_lz4(records: &[u8], size: usize, out: &mut Vec<u8>) -> Result<(), ChunkError> {
     use std::io::Read;
-    let mut out = Vec::with_capacity(size.min(records.len().saturating_mul(255)));
+    out.clear();
+    out.reserve(size.min(records.len().saturating_mul(255)));
     lz4_flex::frame::FrameDecoder::new(records)
         .take(size as u64 + 1)
-        .read_to_end(&mut out)
+        .read_to_end(out)
         .map_err(|e| ChunkError::NotRecords(format!("an lz4 chunk does not decompress ({e})")))?;
     if out.len() != size {
         return Err(ChunkError::NotRecords(format!(
@@ -147,7 +185,7 @@ fn inflate_lz4(records: &[u8], size: usize) -> Result<Vec<u8>, ChunkError> {
             out.len()
         )));
     }
-    Ok(out)
+    Ok(())
 }
 
 fn check_crc(saved: u32, data: &[u8]) -> Result<(), ChunkError> {

@@ -26,7 +26,7 @@ use crate::load::mcap::{MAGIC, RECORD_LENGTH_LIMIT};
 const FOOTER_LEN: u64 = 1 + 8 + 8 + 8 + 4 + 8;
 
 /// Bytes read at once around an uncompressed chunk's pose messages.
-const MESSAGE_WINDOW: usize = 64 << 10;
+const MESSAGE_WINDOW: usize = 8 << 10;
 
 /// An uncompressed chunk at least this long is read message by message;
 /// a shorter one is read whole (one read, and its CRC checked).
@@ -243,18 +243,18 @@ pub(crate) async fn read<R: ReadAt>(
                 reading.failed(ci, e);
             }
         } else {
-            let record = access
-                .read_at(ci.chunk_start_offset, ci.chunk_length as usize)
+            let mut record = reading.batch.buffer();
+            access
+                .read_into(ci.chunk_start_offset, ci.chunk_length as usize, &mut record)
                 .await
                 .map_err(|reason| Error::Io {
                     file: c.label().to_owned(),
                     reason,
                 })?;
             match as_indexed(&record, ci) {
-                Ok((head, body)) => {
-                    let records =
-                        body[head.records_at..head.records_at + head.records_len].to_vec();
-                    reading.push(&mut c, ci, head, records)?;
+                Ok(head) => {
+                    let at = 9 + head.records_at;
+                    reading.push(&mut c, ci, head, record, at)?;
                 }
                 Err(why) => reading.bad(&c, ci, why),
             }
@@ -267,10 +267,7 @@ pub(crate) async fn read<R: ReadAt>(
 /// A chunk record read whole, checked against its index: its opcode, its
 /// length, and the sizes and compression of its header; its header and
 /// body.
-fn as_indexed<'a>(
-    record: &'a [u8],
-    ci: &ChunkIndex,
-) -> std::result::Result<(ChunkHead, &'a [u8]), String> {
+fn as_indexed(record: &[u8], ci: &ChunkIndex) -> std::result::Result<ChunkHead, String> {
     let Some((opcode, len)) = record_head(record) else {
         return Err("the file ends inside it".to_owned());
     };
@@ -301,7 +298,7 @@ fn as_indexed<'a>(
             ci.compression
         ));
     }
-    Ok((head, body))
+    Ok(head)
 }
 
 /// The chunks read so far: a batch waiting to be opened, and the errors
@@ -319,10 +316,11 @@ impl Reading {
         c: &mut Collector<'_>,
         ci: &ChunkIndex,
         head: ChunkHead,
-        records: Vec<u8>,
+        buf: Vec<u8>,
+        at: usize,
     ) -> Result<()> {
         self.starts.push(ci.chunk_start_offset);
-        if self.batch.push(head, records) {
+        if self.batch.push(head, buf, at) {
             self.flush(c)?;
         }
         Ok(())
@@ -427,7 +425,7 @@ async fn plain_messages<R: ReadAt>(
         .compressed_data_offset()
         .map_err(|e| corrupt(e.to_string()))?;
     let records_len = ci.compressed_size;
-    let mut w = Window::new();
+    let mut w = Window::with_piece(MESSAGE_WINDOW);
     for off in offsets {
         if off.checked_add(9).is_none_or(|end| end > records_len) {
             return Err(corrupt(format!(

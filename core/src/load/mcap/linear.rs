@@ -15,19 +15,29 @@ use crate::load::mcap::{MAGIC, READ_PIECE, RECORD_LENGTH_LIMIT, WINDOW, open_all
 pub(crate) struct Window {
     buf: Vec<u8>,
     start: u64,
+    scratch: Vec<u8>,
+    piece: usize,
 }
 
 impl Window {
-    /// An empty window at the start of the source.
+    /// An empty window at the start of the source, reading in pieces of
+    /// [`READ_PIECE`].
     pub(crate) fn new() -> Self {
+        Self::with_piece(READ_PIECE)
+    }
+
+    /// An empty window reading in pieces of at least `piece` bytes.
+    pub(crate) fn with_piece(piece: usize) -> Self {
         Self {
             buf: Vec::new(),
             start: 0,
+            scratch: Vec::new(),
+            piece,
         }
     }
 
     /// Up to `len` bytes at `pos` (fewer only where the source ends),
-    /// reading forward in pieces of at least [`READ_PIECE`]; what lies
+    /// reading forward in pieces of at least its piece; what lies
     /// before `pos` is dropped.
     pub(crate) async fn get<R: ReadAt>(
         &mut self,
@@ -44,30 +54,40 @@ impl Window {
         self.start = pos;
         while self.buf.len() < len {
             let at = self.start + self.buf.len() as u64;
-            let more = access
-                .read_at(at, (len - self.buf.len()).max(READ_PIECE))
-                .await?;
-            if more.is_empty() {
+            let want = (len - self.buf.len()).max(self.piece);
+            access.read_into(at, want, &mut self.scratch).await?;
+            if self.scratch.is_empty() {
                 break;
             }
-            self.buf.extend_from_slice(&more);
+            self.buf.extend_from_slice(&self.scratch);
         }
         Ok(&self.buf[..len.min(self.buf.len())])
     }
 }
 
-/// Chunks read and waiting to be opened together, in file order.
+/// Chunks read and waiting to be opened together, in file order: each
+/// chunk's header and a buffer holding its records at an offset. The
+/// buffers (and those the chunks decompress into) are reused batch after
+/// batch: fresh gigabytes of allocations cost more than the decompression.
 #[derive(Default)]
 pub(crate) struct Batch {
-    chunks: Vec<(ChunkHead, Vec<u8>)>,
+    chunks: Vec<(ChunkHead, Vec<u8>, usize)>,
+    outputs: Vec<Vec<u8>>,
+    spare: Vec<Vec<u8>>,
     bytes: usize,
 }
 
 impl Batch {
-    /// Adds a chunk; `true` when the batch is full.
-    pub(crate) fn push(&mut self, head: ChunkHead, records: Vec<u8>) -> bool {
-        self.bytes += records.len() + head.uncompressed_size as usize;
-        self.chunks.push((head, records));
+    /// A buffer to read a chunk into.
+    pub(crate) fn buffer(&mut self) -> Vec<u8> {
+        self.spare.pop().unwrap_or_default()
+    }
+
+    /// Adds a chunk whose records are `buf[at..]`; `true` when the batch is
+    /// full.
+    pub(crate) fn push(&mut self, head: ChunkHead, buf: Vec<u8>, at: usize) -> bool {
+        self.bytes += head.records_len + head.uncompressed_size as usize;
+        self.chunks.push((head, buf, at));
         self.bytes >= WINDOW
     }
 
@@ -82,13 +102,21 @@ impl Batch {
     pub(crate) fn flush_each(&mut self, c: &mut Collector<'_>) -> Vec<Result<()>> {
         let chunks = std::mem::take(&mut self.chunks);
         self.bytes = 0;
-        open_all(&chunks)
-            .into_iter()
-            .map(|opened| match opened {
-                Ok(records) => c.chunk_records(&records),
+        self.outputs
+            .resize_with(self.outputs.len().max(chunks.len()), Vec::new);
+        let opened = open_all(&chunks, &mut self.outputs[..chunks.len()]);
+        let results = chunks
+            .iter()
+            .zip(&self.outputs)
+            .zip(opened)
+            .map(|(((head, buf, at), out), opened)| match opened {
+                Ok(true) => c.chunk_records(out),
+                Ok(false) => c.chunk_records(&buf[*at..*at + head.records_len]),
                 Err(e) => Err(c.chunk_error(e)),
             })
-            .collect()
+            .collect();
+        self.spare.extend(chunks.into_iter().map(|(_, buf, _)| buf));
+        results
     }
 }
 
@@ -142,8 +170,10 @@ pub(crate) async fn read<R: ReadAt>(mut c: Collector<'_>, access: &mut R) -> Res
             mcap::records::op::CHUNK => {
                 let head =
                     ChunkHead::parse(body, body.len() as u64).map_err(|e| c.chunk_error(e))?;
-                let records = body[head.records_at..head.records_at + head.records_len].to_vec();
-                if batch.push(head, records) {
+                let mut buf = batch.buffer();
+                buf.clear();
+                buf.extend_from_slice(&body[head.records_at..head.records_at + head.records_len]);
+                if batch.push(head, buf, 0) {
                     batch.flush(&mut c)?;
                 }
             }

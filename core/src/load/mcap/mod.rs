@@ -178,23 +178,30 @@ impl Collector<'_> {
     }
 }
 
-/// Opens the chunks of a batch, on every core where there are several.
+/// Opens the chunks of a batch into `outputs` (one per chunk), on every
+/// core where there are several: each chunk's [`chunk::open_into`].
 pub(crate) fn open_all(
-    batch: &[(ChunkHead, Vec<u8>)],
-) -> Vec<std::result::Result<std::borrow::Cow<'_, [u8]>, ChunkError>> {
+    batch: &[(ChunkHead, Vec<u8>, usize)],
+    outputs: &mut [Vec<u8>],
+) -> Vec<std::result::Result<bool, ChunkError>> {
+    let open = |((head, buf, at), out): (&(ChunkHead, Vec<u8>, usize), &mut Vec<u8>)| {
+        chunk::open_into(
+            head,
+            &buf[*at..*at + head.records_len],
+            RECORD_LENGTH_LIMIT,
+            out,
+        )
+    };
     #[cfg(feature = "parallel")]
     if batch.len() > 1 {
         use rayon::prelude::*;
-        return batch.par_iter().map(open).collect();
+        return batch
+            .par_iter()
+            .zip(outputs.par_iter_mut())
+            .map(open)
+            .collect();
     }
-    batch.iter().map(open).collect()
-}
-
-/// Opens one chunk of a batch.
-fn open(
-    (head, records): &(ChunkHead, Vec<u8>),
-) -> std::result::Result<std::borrow::Cow<'_, [u8]>, ChunkError> {
-    chunk::open(head, records, RECORD_LENGTH_LIMIT)
+    batch.iter().zip(outputs.iter_mut()).map(open).collect()
 }
 
 /// The reader's error in words a user can act on.
