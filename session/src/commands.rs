@@ -33,6 +33,9 @@ pub enum Command {
         /// Include, leave out, or as the filter says.
         included: Option<bool>,
     },
+    /// Stop reading a recording (an index into `Session::recordings`): it
+    /// stays in the list, unread.
+    CancelLoading(usize),
     /// Stop the landscape where it is.
     CancelLandscape,
     /// Compute the landscape again from the start.

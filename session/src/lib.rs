@@ -32,7 +32,7 @@ pub use landscape::{Shown, Snapshot};
 pub use rl_request::{Progress as RlProgress, RlRequest, RlRun, RunState};
 pub use session::Session;
 pub use settings::Settings;
-pub use sources::Source;
+pub use sources::{LoadSlot, RemoteFile, RemoteLoad, Source};
 pub use state::AllowedView;
 pub use state::{DemoEntry, StageRuns};
 pub use status::Status;

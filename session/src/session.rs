@@ -140,6 +140,11 @@ impl Session {
                     };
                 }
             }
+            Command::CancelLoading(source) => {
+                if let Some(slot) = self.slots.get(source) {
+                    slot.cancel();
+                }
+            }
             Command::CancelLandscape => {
                 self.landscape.cancel();
             }

@@ -4,15 +4,18 @@
 //! happens to it, so a changed option reloads it and nothing the user opened
 //! is lost.
 
+use std::future::Future;
 use std::path::PathBuf;
-use std::sync::{Arc, LazyLock};
+use std::pin::Pin;
+use std::sync::{Arc, LazyLock, Mutex, PoisonError};
 
 use dmpscope_core::arrange::streams::{Arrangement, Overrides, StreamInfo, arrange};
+use dmpscope_core::load::access::{FileAt, Meter, Metered, SliceAt, poll_once};
 use dmpscope_core::load::options::{LoadOptions, UpAxis};
-use dmpscope_core::load::source::{SourceData, SourceStreams, load_streams};
+use dmpscope_core::load::source::{SourceData, SourceStreams, load_streams, load_streams_at};
 use dmpscope_core::{Level, Notice, RawDemo};
 
-use crate::jobs::{Once, Runner};
+use crate::jobs::{Runner, Step, Work};
 use crate::stage::{Polled, Stage};
 
 /// The bundled samples' bytes, shared by every source made of them.
@@ -34,6 +37,74 @@ pub enum Source {
         /// The contents.
         bytes: Arc<[u8]>,
     },
+    /// A file read where it is, in slices, by the platform (a browser's
+    /// `File`): never held whole.
+    Remote(RemoteFile),
+}
+
+/// A file the platform reads in slices (a browser's `File`, through
+/// `Blob.slice`): its name, its size, and what loads it.
+#[derive(Clone, Debug)]
+pub struct RemoteFile {
+    /// The file name (shown, and its extension picks the reader).
+    pub name: String,
+    /// Its size in bytes.
+    pub size: u64,
+    /// What reads it.
+    pub loader: Arc<dyn RemoteLoad>,
+}
+
+/// Where a load's result arrives.
+pub type LoadSlot = Arc<Mutex<Option<Result<SourceStreams, String>>>>;
+
+/// Loads a [`RemoteFile`]'s streams (the core's `load_streams_at` over its
+/// slices), off the session: its result arrives in the slot it returns;
+/// reads are counted in, and stopped by, `meter`.
+pub trait RemoteLoad: Send + Sync + std::fmt::Debug {
+    /// Starts loading with `options`.
+    fn start(&self, options: LoadOptions, meter: Arc<Meter>) -> LoadSlot;
+}
+
+/// Loading a source as a job: a file or bytes in one step, read through a
+/// [`Meter`] (progress, cancel); a remote file by waiting for its result.
+pub struct LoadWork {
+    state: LoadState,
+    meter: Arc<Meter>,
+}
+
+enum LoadState {
+    /// The load, ready at its first poll.
+    Local(Pin<Box<dyn Future<Output = Result<SourceStreams, String>> + Send>>),
+    /// A remote load's result slot.
+    Remote(LoadSlot),
+}
+
+impl Work for LoadWork {
+    type Output = Result<SourceStreams, String>;
+
+    fn step(&mut self) -> Step<Self::Output> {
+        match &mut self.state {
+            LoadState::Local(future) => match poll_once(future) {
+                Some(result) => Step::Done(result),
+                None => Step::Waiting,
+            },
+            LoadState::Remote(slot) => {
+                match slot.lock().unwrap_or_else(PoisonError::into_inner).take() {
+                    Some(result) => Step::Done(result),
+                    None => Step::Waiting,
+                }
+            }
+        }
+    }
+}
+
+impl Drop for LoadWork {
+    fn drop(&mut self) {
+        // A load dropped (new options, the source closed) stops reading.
+        self.meter
+            .cancel
+            .store(true, std::sync::atomic::Ordering::Relaxed);
+    }
 }
 
 impl Source {
@@ -84,15 +155,62 @@ impl Source {
         match self {
             Self::Path(p) => p.display().to_string(),
             Self::Bytes { name, .. } => name.clone(),
+            Self::Remote(f) => f.name.clone(),
         }
     }
 
-    /// Loads the source's streams (the core's `load_streams`, as the CLI).
+    /// The size in bytes of a single file (`None`: a folder, or unknown).
+    pub fn size(&self) -> Option<u64> {
+        match self {
+            Self::Path(p) => std::fs::metadata(p)
+                .ok()
+                .filter(|m| m.is_file())
+                .map(|m| m.len()),
+            Self::Bytes { bytes, .. } => Some(bytes.len() as u64),
+            Self::Remote(f) => Some(f.size),
+        }
+    }
+
+    /// The load of the source's streams as a job (the core's
+    /// `load_streams_at`, as the CLI), counted in `meter`.
+    pub fn loader(&self, options: LoadOptions, meter: Arc<Meter>) -> LoadWork {
+        let name = self.name();
+        let state = match self.clone() {
+            Self::Remote(f) => LoadState::Remote(f.loader.start(options, Arc::clone(&meter))),
+            Self::Bytes { bytes, .. } => {
+                let meter = Arc::clone(&meter);
+                LoadState::Local(Box::pin(async move {
+                    let mut access = Metered::new(SliceAt(&bytes), meter);
+                    load_streams_at(&name, &mut access, &options)
+                        .await
+                        .map_err(|e| e.to_string())
+                }))
+            }
+            Self::Path(p) if p.is_file() => {
+                let meter = Arc::clone(&meter);
+                LoadState::Local(Box::pin(async move {
+                    let file = FileAt::open(&p).map_err(|e| format!("{name}: {e}"))?;
+                    let mut access = Metered::new(file, meter);
+                    load_streams_at(&name, &mut access, &options)
+                        .await
+                        .map_err(|e| e.to_string())
+                }))
+            }
+            Self::Path(p) => LoadState::Local(Box::pin(async move {
+                load_streams(&name, SourceData::Path(&p), &options).map_err(|e| e.to_string())
+            })),
+        };
+        LoadWork { state, meter }
+    }
+
+    /// Loads the source's streams at once (the core's `load_streams`, as
+    /// the CLI); a remote file cannot be.
     pub fn load(&self, options: &LoadOptions) -> Result<SourceStreams, String> {
         let name = self.name();
         let data = match self {
             Self::Path(p) => SourceData::Path(p),
             Self::Bytes { bytes, .. } => SourceData::Bytes(bytes),
+            Self::Remote(_) => return Err(format!("{name}: read in slices only")),
         };
         load_streams(&name, data, options).map_err(|e| e.to_string())
     }
@@ -161,6 +279,10 @@ pub struct SourceSlot {
     streams_info: Vec<StreamInfo>,
     /// The user's choice per stream (topic), over the filter.
     pub overrides: Overrides,
+    /// The current load's meter (bytes read, cancel).
+    meter: Arc<Meter>,
+    /// The source's size, when it is one file.
+    size: Option<u64>,
 }
 
 /// What changed in a slot during [`SourceSlot::update`].
@@ -186,7 +308,25 @@ impl SourceSlot {
             grouped: Stage::default(),
             streams_info: Vec::new(),
             overrides: Overrides::new(),
+            meter: Arc::new(Meter::default()),
+            size: None,
         }
+    }
+
+    /// How far the current load has read: bytes read and the file's size
+    /// (`None` when not loading, or for a folder).
+    pub fn progress(&self) -> Option<(u64, u64)> {
+        let size = self.size?;
+        self.load
+            .running()
+            .then(|| (self.meter.bytes_read().min(size), size))
+    }
+
+    /// Stops the current load (it ends as cancelled).
+    pub fn cancel(&self) {
+        self.meter
+            .cancel
+            .store(true, std::sync::atomic::Ordering::Relaxed);
     }
 
     /// Every stream the source holds and what became of it (empty until
@@ -249,10 +389,12 @@ impl SourceSlot {
             self.load.clear();
         }
         let source = &self.source;
+        let (meter, size) = (&mut self.meter, &mut self.size);
         if !current
             && self.load.ensure_job(key.clone(), || {
-                let (source, load_options) = (source.clone(), key.options());
-                let work = Once::new(move || source.load(&load_options));
+                *meter = Arc::new(Meter::default());
+                *size = source.size();
+                let work = source.loader(key.options(), Arc::clone(meter));
                 Ok(runner.start("loading", work))
             })
         {

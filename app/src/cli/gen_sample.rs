@@ -52,6 +52,10 @@ pub struct Args {
     /// The lab take's chunk size, MiB.
     #[arg(long, default_value_t = 4, requires = "lab")]
     chunk_mb: u64,
+    /// Instead: write the hostile files (decompression bombs, sizes that
+    /// lie, floods of indexes) into this folder.
+    #[arg(long, value_name = "DIR")]
+    hostile: Option<PathBuf>,
 }
 
 /// How planted demos share their forcing term.
@@ -70,6 +74,22 @@ const EPOCH_NS: i64 = 1_763_805_600_000_000_000;
 pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(seconds) = args.lab {
         return write_lab(&args, seconds);
+    }
+    if let Some(dir) = &args.hostile {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("{}: cannot create", dir.display()))?;
+        for h in dmpscope_core::synth::hostile::hostile_files() {
+            let path = dir.join(h.name);
+            std::fs::write(&path, &h.bytes)
+                .with_context(|| format!("{}: cannot write", path.display()))?;
+            eprintln!(
+                "wrote {} ({} bytes): {}",
+                path.display(),
+                h.bytes.len(),
+                h.what
+            );
+        }
+        return Ok(());
     }
     if args.demos == 0 || args.demos > 99 {
         anyhow::bail!("--demos must be 1 to 99, got {}", args.demos);

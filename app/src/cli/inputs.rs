@@ -4,19 +4,20 @@
 //! command-line order, then [`dmpscope_core::build_model`] with the
 //! `--unusable` policy. Every default is the core's.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use dmpscope_core::SkillMode;
-use dmpscope_core::arrange::streams::load_source;
+use dmpscope_core::arrange::streams::arrange_source;
 use dmpscope_core::arrange::streams::unique_names;
 use dmpscope_core::fit::settings::DmpSettings;
+use dmpscope_core::load::access::{FileAt, Meter, Metered, block_on};
 use dmpscope_core::load::options::GapPolicy;
 use dmpscope_core::load::options::Grouping;
 use dmpscope_core::load::options::StreamFilter;
 use dmpscope_core::load::options::{LoadOptions, UpAxis};
 use dmpscope_core::load::options::{SegmentPick, SegmentSettings};
-use dmpscope_core::load::source::{SourceData, load_streams};
+use dmpscope_core::load::source::{SourceData, SourceStreams, load_streams, load_streams_at};
 use dmpscope_core::load::units::Units;
 use dmpscope_core::{Model, Notice, PrepSettings, RawDemo, Unusable, build_model};
 
@@ -189,15 +190,16 @@ impl LoadArgs {
 
     /// The streams of every file, before grouping (`info --segment`).
     pub fn load_streams(&self) -> anyhow::Result<Vec<RawDemo>> {
-        self.load_with(|name, data, options| {
-            load_streams(name, data, options).map(|l| (l.demos, l.notices))
+        self.load_with(|name, path, options| {
+            read_streams(name, path, options).map(|l| (l.demos, l.notices))
         })
     }
 
     /// The demonstrations, grouped as asked, their names unique.
     pub fn load_demos(&self) -> anyhow::Result<Vec<RawDemo>> {
-        let mut demos = self.load_with(|name, data, options| {
-            load_source(name, data, options).map(|l| (l.demos, l.notices))
+        let mut demos = self.load_with(|name, path, options| {
+            let loaded = read_streams(name, path, options)?;
+            arrange_source(loaded, options).map(|l| (l.demos, l.notices))
         })?;
         if demos.is_empty() {
             anyhow::bail!(
@@ -211,11 +213,7 @@ impl LoadArgs {
 
     fn load_with(
         &self,
-        load: impl Fn(
-            &str,
-            SourceData<'_>,
-            &LoadOptions,
-        ) -> dmpscope_core::Result<(Vec<RawDemo>, Vec<Notice>)>,
+        load: impl Fn(&str, &Path, &LoadOptions) -> dmpscope_core::Result<(Vec<RawDemo>, Vec<Notice>)>,
     ) -> anyhow::Result<Vec<RawDemo>> {
         let options = self.options();
         if self.segments != SegmentPick::All && self.demos != DemosBy::Segment {
@@ -227,7 +225,7 @@ impl LoadArgs {
         let mut demos = Vec::new();
         for path in &self.files {
             let name = path.display().to_string();
-            let (loaded, notices) = load(&name, SourceData::Path(path), &options)?;
+            let (loaded, notices) = load(&name, path, &options)?;
             print_notices(&notices);
             demos.extend(loaded);
         }
@@ -355,4 +353,46 @@ pub fn model_of(
         .filter_map(|&i| raw.get_mut(i).and_then(Option::take))
         .collect();
     Ok((used, Arc::new(built.model)))
+}
+
+/// Files at least this large are read with a progress bar on stderr.
+const PROGRESS_FROM: u64 = 64 << 20;
+
+/// The streams of `path` (a file or a folder), as the core's
+/// `load_streams`; a file of [`PROGRESS_FROM`] bytes or more is read with
+/// a progress bar on stderr (drawn only where stderr is a terminal).
+fn read_streams(
+    name: &str,
+    path: &Path,
+    options: &LoadOptions,
+) -> dmpscope_core::Result<SourceStreams> {
+    let size = std::fs::metadata(path)
+        .ok()
+        .filter(|m| m.is_file())
+        .map(|m| m.len());
+    let Some(size) = size.filter(|&s| s >= PROGRESS_FROM) else {
+        return load_streams(name, SourceData::Path(path), options);
+    };
+    let file = FileAt::open(path).map_err(|reason| dmpscope_core::Error::Io {
+        file: name.to_owned(),
+        reason,
+    })?;
+    let meter = Arc::new(Meter::default());
+    let mut access = Metered::new(file, Arc::clone(&meter));
+    let bar = super::output::byte_bar(size, name);
+    let result = std::thread::scope(|scope| {
+        let reading = scope.spawn(|| block_on(load_streams_at(name, &mut access, options)));
+        while !reading.is_finished() {
+            bar.set_position(meter.bytes_read());
+            std::thread::sleep(std::time::Duration::from_millis(100));
+        }
+        reading.join()
+    });
+    bar.finish_and_clear();
+    result.unwrap_or_else(|_| {
+        Err(dmpscope_core::Error::Source {
+            path: name.to_owned(),
+            reason: "the reader stopped unexpectedly".to_owned(),
+        })
+    })
 }

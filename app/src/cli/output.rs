@@ -38,6 +38,22 @@ pub fn progress_bar(total: u64, what: &str) -> indicatif::ProgressBar {
     bar
 }
 
+/// A progress bar of bytes read on stderr, for reading `what` (hidden where
+/// stderr is not a terminal; never on stdout, where `--json` goes).
+pub fn byte_bar(total: u64, what: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(total),
+        indicatif::ProgressDrawTarget::stderr(),
+    );
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "reading {msg} [{bar:40}] {bytes}/{total_bytes} ({elapsed})",
+    ) {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar.set_message(what.to_owned());
+    bar
+}
+
 static VERBOSE: AtomicBool = AtomicBool::new(false);
 
 /// Whether details are printed (`-v`).

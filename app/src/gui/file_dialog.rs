@@ -11,6 +11,7 @@
 //! in tests, which never open a system dialog). The browser starts in the
 //! folder of the last recording opened.
 
+use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
 
 use dmpscope_core::Notice;
@@ -117,7 +118,8 @@ impl Dialogs {
 
     /// Opens the "Open recordings" dialog (a folder when `folder`); `wake`
     /// repaints when it answers.
-    pub fn open(&mut self, folder: bool, wake: impl Fn() + Send + 'static) {
+    pub fn open(&mut self, folder: bool, wake: impl Fn() + Send + Sync + 'static) {
+        let wake: Wake = Arc::new(wake);
         if !self.system() {
             let _ = self.tx.send(Answer::NoOpenDialog { folder });
             wake();
@@ -146,7 +148,7 @@ impl Dialogs {
                     Some(files) => {
                         let mut sources = Vec::new();
                         for f in files {
-                            sources.push(source_of(f).await);
+                            sources.push(source_of(f, &wake).await);
                         }
                         Answer::Open(sources)
                     }
@@ -199,16 +201,21 @@ impl Dialogs {
     pub fn read_dropped(
         &self,
         files: Vec<egui::DroppedFileHandle>,
-        wake: impl Fn() + Send + 'static,
+        wake: impl Fn() + Send + Sync + 'static,
     ) {
         if files.is_empty() {
             return;
         }
+        let wake: Wake = Arc::new(wake);
         let tx = self.tx.clone();
         let failed = Answer::Say(Notice::error("cannot read the dropped files"));
         spawn(self.tx.clone(), failed, async move {
             let mut sources = Vec::new();
             for f in files {
+                if let Some(source) = dropped_source(&f, &wake) {
+                    sources.push(source);
+                    continue;
+                }
                 let name = f.path().display().to_string();
                 match read_dropped(&f).await {
                     Ok(bytes) => sources.push(Source::Bytes {
@@ -346,17 +353,30 @@ async fn read_dropped(f: &egui::DroppedFileHandle) -> Result<Vec<u8>, String> {
     f.bytes_async().await
 }
 
+/// A dropped file as a source: in the browser its `File`, read in slices
+/// (never whole); natively (and where the browser gives no `File`) `None`.
+#[cfg(target_arch = "wasm32")]
+fn dropped_source(f: &egui::DroppedFileHandle, wake: &Wake) -> Option<Source> {
+    f.web_file()
+        .map(|file| super::blob_source::source_of_file(file.clone(), Arc::clone(wake)))
+}
+
 #[cfg(not(target_arch = "wasm32"))]
-async fn source_of(f: rfd::FileHandle) -> Source {
+fn dropped_source(_f: &egui::DroppedFileHandle, _wake: &Wake) -> Option<Source> {
+    None
+}
+
+/// What asks for a frame.
+type Wake = Arc<dyn Fn() + Send + Sync>;
+
+#[cfg(not(target_arch = "wasm32"))]
+async fn source_of(f: rfd::FileHandle, _wake: &Wake) -> Source {
     Source::Path(f.path().to_path_buf())
 }
 
 #[cfg(target_arch = "wasm32")]
-async fn source_of(f: rfd::FileHandle) -> Source {
-    Source::Bytes {
-        name: f.file_name(),
-        bytes: f.read().await.into(),
-    }
+async fn source_of(f: rfd::FileHandle, wake: &Wake) -> Source {
+    super::blob_source::source_of_file(f.inner().clone(), Arc::clone(wake))
 }
 
 #[cfg(not(target_arch = "wasm32"))]

@@ -10,6 +10,8 @@
 //! browser tests' hook.
 
 mod app;
+#[cfg(target_arch = "wasm32")]
+mod blob_source;
 mod commands;
 mod export;
 mod file_dialog;

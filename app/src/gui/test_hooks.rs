@@ -63,6 +63,9 @@ pub struct FrameWatch {
     pub(super) last_ui_ms: f64,
     /// Whether the landscape was computing at the last frame.
     pub(super) last_computing: bool,
+    /// The app's own `ui` time of each frame while computing (the first
+    /// 5000), ms: the page's own main-thread work per frame.
+    pub(super) work_ms: Vec<f64>,
 }
 
 impl FrameWatch {
@@ -113,6 +116,9 @@ impl FrameWatch {
     pub fn ui_done(&mut self) {
         if let Some(start) = self.ui_start.take() {
             self.last_ui_ms = start.elapsed().as_secs_f64() * 1e3;
+            if self.last_computing && self.work_ms.len() < 5000 {
+                self.work_ms.push(self.last_ui_ms);
+            }
         }
     }
 }

@@ -104,7 +104,55 @@ impl DmpApp {
             "repaint_causes": causes,
             "rl": rl_json(session),
             "generalised": generalised_json(session),
+            "raw_demos": raw_demos_json(session),
+            "reading": reading_json(session),
+            "wasm_memory_bytes": wasm_memory_bytes(),
+            "page_frame_work_ms": self.frame_watch.work_ms,
         })
+    }
+}
+
+/// Every demo as loaded: its name, samples, first and last position (the
+/// browser test compares them with the native build's).
+fn raw_demos_json(session: &Session) -> serde_json::Value {
+    session
+        .demos()
+        .iter()
+        .map(|d| {
+            let p = &d.raw.positions;
+            serde_json::json!({
+                "name": d.raw.name,
+                "samples": p.len(),
+                "first": p.first().map(|v| [v.x, v.y, v.z]),
+                "last": p.last().map(|v| [v.x, v.y, v.z]),
+                "first_ns": d.raw.stamps_ns.first(),
+                "last_ns": d.raw.stamps_ns.last(),
+            })
+        })
+        .collect()
+}
+
+/// Each recording being read: its name, bytes read and size.
+fn reading_json(session: &Session) -> serde_json::Value {
+    session
+        .recordings()
+        .iter()
+        .filter_map(|slot| {
+            let (read, size) = slot.progress()?;
+            Some(serde_json::json!({"name": slot.source.name(), "read": read, "size": size}))
+        })
+        .collect()
+}
+
+/// The module's linear memory, bytes (0 natively).
+fn wasm_memory_bytes() -> u64 {
+    #[cfg(target_arch = "wasm32")]
+    {
+        core::arch::wasm32::memory_size(0) as u64 * 65536
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        0
     }
 }
 

@@ -20,7 +20,7 @@ use crate::load::options::GapPolicy;
 use crate::load::options::Grouping;
 use crate::load::options::SegmentSettings;
 use crate::load::options::{LoadOptions, StreamFilter, matches_stream};
-use crate::load::source::{SourceData, load_streams};
+use crate::load::source::{SourceData, SourceStreams, load_streams};
 use crate::notice::Notice;
 
 /// What happened to a stream.
@@ -339,7 +339,13 @@ pub struct SourceDemos {
 /// together (pooled names are made unique by
 /// [`crate::arrange::streams::unique_names`]).
 pub fn load_source(name: &str, data: SourceData<'_>, options: &LoadOptions) -> Result<SourceDemos> {
-    let loaded = load_streams(name, data, options)?;
+    arrange_source(load_streams(name, data, options)?, options)
+}
+
+/// Arranges a source's streams into its demonstrations as
+/// [`load_source`] does (for streams read some other way: in slices, with
+/// progress).
+pub fn arrange_source(loaded: SourceStreams, options: &LoadOptions) -> Result<SourceDemos> {
     let arranged = arrange(loaded.demos, &Arrangement::of(options), &Overrides::new())?;
     let mut notices = loaded.notices;
     notices.extend(arranged.notices);

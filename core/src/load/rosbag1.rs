@@ -425,7 +425,12 @@ async fn read_chunk<R: ReadAt>(
     let data_at = pos + 8 + header_len as u64;
     let end = data_at + data_len;
     if compression.as_deref() == Some("none") && end <= next {
-        let offsets = wanted_offsets(c, walk, access, end, next).await?;
+        let read: BTreeMap<u32, bool> = walk
+            .ids
+            .iter()
+            .map(|(&conn, &id)| (conn, c.reads(id)))
+            .collect();
+        let offsets = wanted_offsets(&read, access, end, next).await?;
         if let Some(offsets) = offsets {
             return plain_messages(c, walk, access, w, data_at, data_len, offsets).await;
         }
@@ -445,8 +450,7 @@ async fn read_chunk<R: ReadAt>(
 /// collector reads, from the index records between `from` and `to`;
 /// `None` when they do not hold together (the chunk is then read whole).
 async fn wanted_offsets<R: ReadAt>(
-    c: &Collector<'_>,
-    walk: &Walk,
+    read: &BTreeMap<u32, bool>,
     access: &mut R,
     from: u64,
     to: u64,
@@ -470,9 +474,9 @@ async fn wanted_offsets<R: ReadAt>(
         let Ok(conn) = record.u32("conn") else {
             return Ok(None);
         };
-        match walk.ids.get(&conn) {
-            Some(&id) if !c.reads(id) => {}
-            Some(_) => offsets.extend(
+        match read.get(&conn) {
+            Some(false) => {}
+            Some(true) => offsets.extend(
                 record
                     .data
                     .chunks_exact(12)
@@ -679,6 +683,7 @@ fn open_chunk<'a>(record: &Record<'a>) -> std::result::Result<Cow<'a, [u8]>, Str
         ));
     }
     let data = record.data;
+    first_bag_record(&compression, data, size)?;
     // Reserve what the compressed bytes can plausibly give, not what a
     // header claims.
     let mut out = Vec::with_capacity(size.min(data.len().saturating_mul(16)));
@@ -704,4 +709,32 @@ fn open_chunk<'a>(record: &Record<'a>) -> std::result::Result<Cow<'a, [u8]>, Str
         ));
     }
     Ok(Cow::Owned(out))
+}
+
+/// Checks the first record of a compressed chunk before the rest is
+/// decompressed: its header's length is neither zero nor past the declared
+/// size (a chunk of zeros, the usual bomb, is refused at its first bytes).
+fn first_bag_record(
+    compression: &str,
+    data: &[u8],
+    size: usize,
+) -> std::result::Result<(), String> {
+    let mut head = [0u8; 4];
+    let read = match compression {
+        "bz2" => bzip2::read::BzDecoder::new(data).read_exact(&mut head),
+        "lz4" => lz4_flex::frame::FrameDecoder::new(data).read_exact(&mut head),
+        _ => return Ok(()),
+    };
+    if size == 0 {
+        return Ok(());
+    }
+    read.map_err(|e| format!("a {compression} chunk does not decompress ({e})"))?;
+    let header_len = u32::from_le_bytes(head) as usize;
+    if header_len == 0 || header_len.saturating_add(8) > size {
+        return Err(format!(
+            "a {compression} chunk begins with a record header of {header_len} bytes in {size} \
+             declared: not a record stream"
+        ));
+    }
+    Ok(())
 }

@@ -52,6 +52,7 @@ pub fn top_bar_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         if session.loading() {
             ui.spinner();
             ui.label("loading…");
+            reading_ui(ui, cx);
         }
         match session.status() {
             Status::Computing(done, total) if total > 0 => {
@@ -106,4 +107,36 @@ fn export_menu(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         "DMP at the new target (JSON for a controller)",
         Export::Dmp,
     );
+}
+
+/// Each recording being read: its name, the bytes read of its size, and
+/// Cancel (the recording stays, unread).
+fn reading_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+    let mut cancel = None;
+    for (i, slot) in cx.session.recordings().iter().enumerate() {
+        let Some((read, size)) = slot.progress() else {
+            continue;
+        };
+        let name = slot.source.name();
+        let short = name.rsplit(['/', '\\']).next().unwrap_or(&name).to_owned();
+        ui.add(
+            egui::ProgressBar::new(read as f32 / size.max(1) as f32)
+                .desired_width(220.0)
+                .text(format!(
+                    "reading {short}: {} of {} MB",
+                    read / 1_000_000,
+                    size / 1_000_000
+                )),
+        );
+        if ui
+            .button("Cancel")
+            .on_hover_text(format!("stop reading {name}"))
+            .clicked()
+        {
+            cancel = Some(i);
+        }
+    }
+    if let Some(i) = cancel {
+        cx.push(session::Command::CancelLoading(i));
+    }
 }

@@ -113,8 +113,14 @@ pub fn open_into(
             check_crc(head.uncompressed_crc, records)?;
             return Ok(false);
         }
-        "zstd" => inflate_zstd(records, size, out)?,
-        "lz4" => inflate_lz4(records, size, out)?,
+        "zstd" => {
+            first_record(zstd::stream::read::Decoder::new(records).ok(), size)?;
+            inflate_zstd(records, size, out)?;
+        }
+        "lz4" => {
+            first_record(Some(lz4_flex::frame::FrameDecoder::new(records)), size)?;
+            inflate_lz4(records, size, out)?;
+        }
         other => {
             return Err(ChunkError::NotRecords(format!(
                 "a chunk compressed with {other:?}, which MCAP readers do not know"
@@ -137,6 +143,31 @@ pub fn open<'a>(
     } else {
         Cow::Borrowed(records)
     })
+}
+
+/// Checks the first record of a compressed chunk before the rest is
+/// decompressed: a record stream begins with a real opcode and a length
+/// that fits the declared size (a chunk of zeros, the usual bomb, is
+/// refused here, at its first bytes).
+fn first_record<R: std::io::Read>(decoder: Option<R>, size: usize) -> Result<(), ChunkError> {
+    if size == 0 {
+        return Ok(());
+    }
+    let mut head = [0u8; 9];
+    let read = decoder.map(|mut d| d.read_exact(&mut head));
+    if !matches!(read, Some(Ok(()))) {
+        return Err(ChunkError::NotRecords(
+            "it does not decompress to a record".to_owned(),
+        ));
+    }
+    let len = u64::from_le_bytes(head[1..9].try_into().unwrap_or([0xFF; 8]));
+    if head[0] == 0 || len > size as u64 - 9.min(size as u64) {
+        return Err(ChunkError::NotRecords(format!(
+            "it begins with a record of opcode {:#04x} and {len} bytes in {size} declared: not a record stream",
+            head[0]
+        )));
+    }
+    Ok(())
 }
 
 thread_local! {

@@ -220,6 +220,18 @@ pub(crate) async fn read<R: ReadAt>(
     }
     let mut chunks = index.chunks;
     chunks.sort_by_key(|ci| ci.chunk_start_offset);
+    // One read per chunk, however often the summary lists it; chunks that
+    // overlap do not hold together (each byte is read at most once).
+    chunks.dedup_by(|b, a| a == b);
+    let overlap = chunks.windows(2).any(|w| {
+        w[0].chunk_start_offset.saturating_add(w[0].chunk_length) > w[1].chunk_start_offset
+    });
+    if overlap {
+        return Err(Error::Mcap {
+            at: c.at(),
+            reason: "its summary lists chunks that overlap: the file is corrupt".to_owned(),
+        });
+    }
     let mut reading = Reading::default();
     for ci in &chunks {
         let wanted = ci.message_index_offsets.is_empty()

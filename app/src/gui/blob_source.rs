@@ -1,0 +1,116 @@
+//! A browser's `File` as a recording read where it is (wasm32 only): the
+//! core's reader asks for byte ranges ([`RemoteAt`]), each answered with
+//! `Blob.slice(start, end).arrayBuffer()`, awaited on the page's event
+//! loop. Nothing holds the whole file: the window in memory is what the
+//! reader keeps (at most a few chunks) plus the poses. The load runs as a
+//! task of its own on the page, its result put where the session's job
+//! waits for it; its reads are counted in, and stopped by, the session's
+//! meter (progress, Cancel).
+
+use std::sync::{Arc, Mutex, PoisonError};
+
+use dmpscope_core::load::access::{Exchange, Meter, Metered, RemoteAt, poll_once};
+use dmpscope_core::load::options::LoadOptions;
+use dmpscope_core::load::source::{SourceStreams, load_streams_at};
+use dmpscope_session::{LoadSlot, RemoteFile, RemoteLoad, Source};
+use send_wrapper::SendWrapper;
+use wasm_bindgen_futures::JsFuture;
+
+/// A `File` the page reads in slices.
+pub struct BlobFile {
+    file: SendWrapper<web_sys::File>,
+    name: String,
+    wake: Arc<dyn Fn() + Send + Sync>,
+}
+
+impl std::fmt::Debug for BlobFile {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "BlobFile({})", self.name)
+    }
+}
+
+/// The source of a browser's `File`; `wake` asks for a frame when bytes
+/// arrive and when the load ends.
+pub fn source_of_file(file: web_sys::File, wake: Arc<dyn Fn() + Send + Sync>) -> Source {
+    let name = file.name();
+    let size = file.size() as u64;
+    Source::Remote(RemoteFile {
+        name: name.clone(),
+        size,
+        loader: Arc::new(BlobFile {
+            file: SendWrapper::new(file),
+            name,
+            wake,
+        }),
+    })
+}
+
+impl RemoteLoad for BlobFile {
+    fn start(&self, options: LoadOptions, meter: Arc<Meter>) -> LoadSlot {
+        let slot: LoadSlot = Arc::default();
+        let out = Arc::clone(&slot);
+        let file = (*self.file).clone();
+        let (name, wake) = (self.name.clone(), Arc::clone(&self.wake));
+        wasm_bindgen_futures::spawn_local(async move {
+            let result = load(&name, &file, options, meter, &*wake).await;
+            *out.lock().unwrap_or_else(PoisonError::into_inner) = Some(result);
+            wake();
+        });
+        slot
+    }
+}
+
+/// Loads `file`'s streams, answering the reader's requests one by one.
+async fn load(
+    name: &str,
+    file: &web_sys::File,
+    options: LoadOptions,
+    meter: Arc<Meter>,
+    wake: &(dyn Fn() + Send + Sync),
+) -> Result<SourceStreams, String> {
+    let size = file.size() as u64;
+    let exchange = Arc::new(Mutex::new(Exchange::default()));
+    let mut access = Metered::new(RemoteAt::new(size, Arc::clone(&exchange)), meter);
+    let mut reading = Box::pin(load_streams_at(name, &mut access, &options));
+    let mut reads = 0u64;
+    loop {
+        if let Some(result) = poll_once(&mut reading) {
+            return result.map_err(|e| e.to_string());
+        }
+        let request = exchange
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .request;
+        let Some((offset, len)) = request else {
+            return Err(format!(
+                "{name}: the reader stopped without asking for bytes"
+            ));
+        };
+        let answer = read_slice(file, offset, len, size).await;
+        exchange
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .answer = Some(answer);
+        reads += 1;
+        if reads % 16 == 0 {
+            wake();
+        }
+    }
+}
+
+/// `len` bytes of `file` at `offset` (fewer at its end).
+async fn read_slice(
+    file: &web_sys::File,
+    offset: u64,
+    len: usize,
+    size: u64,
+) -> Result<Vec<u8>, String> {
+    let end = offset.saturating_add(len as u64).min(size);
+    let blob = file
+        .slice_with_f64_and_f64(offset as f64, end.max(offset) as f64)
+        .map_err(|e| format!("{e:?}"))?;
+    let buffer = JsFuture::from(blob.array_buffer())
+        .await
+        .map_err(|e| format!("the browser cannot read the file: {e:?}"))?;
+    Ok(js_sys::Uint8Array::new(&buffer).to_vec())
+}
