@@ -237,10 +237,13 @@ fn check_the_pick(report: &Value, picked: &Value) {
             "d_sum",
             "dm",
             "e_sum",
+            "edge",
             "j",
             "km",
+            "on_edge",
             "rule",
             "s",
+            "settling",
             "why",
             "zeta"
         ]

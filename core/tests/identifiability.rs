@@ -145,6 +145,7 @@ fn every_pick_is_in_the_region_and_obeys_its_rule() {
                 rule: Some(rule),
                 eps,
                 a_peak_limit: None,
+                settle_within: None,
             };
             let a = Allowed::new(&model, &land, &x, settings);
             let Some(p) = &a.pick else {
@@ -195,6 +196,7 @@ fn every_pick_is_in_the_region_and_obeys_its_rule() {
             rule: Some(PickRule::Smooth),
             eps: 0.02,
             a_peak_limit: Some(1e-9),
+            settle_within: None,
         },
     );
     assert!(a.pick.is_none());

@@ -33,6 +33,7 @@ impl Session {
             return;
         }
         let limit = settings.a_peak_limit.filter(|l| l.is_finite() && *l > 0.0);
+        let settle = settings.settle_within.filter(|s| s.is_finite() && *s > 0.0);
         let eps = if settings.accept_eps.is_finite() && settings.accept_eps > 0.0 {
             settings.accept_eps
         } else {
@@ -43,11 +44,13 @@ impl Session {
             rule: settings.pick,
             eps: eps.to_bits(),
             limit: limit.map(f64::to_bits),
+            settle: settle.map(f64::to_bits),
         };
         let pick = PickSettings {
             rule: settings.pick,
             eps,
             a_peak_limit: limit,
+            settle_within: settle,
         };
         let runner = &self.runner;
         self.allowed.ensure_serial(key, || {

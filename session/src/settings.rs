@@ -40,6 +40,10 @@ pub struct Settings {
     pub pick: Option<dmpscope_core::extract::allowed::PickRule>,
     /// The acceptable region's eps: J within this fraction of J*.
     pub accept_eps: f64,
+    /// The settling limit (unit time) of the compliant, critical and
+    /// smooth picks (`None`: off).
+    #[serde(default)]
+    pub settle_within: Option<f64>,
 }
 
 impl Default for Settings {
@@ -64,6 +68,7 @@ impl Default for Settings {
             a_peak_limit: None,
             pick: None,
             accept_eps: dmpscope_core::extract::allowed::DEFAULT_EPS,
+            settle_within: None,
         }
     }
 }

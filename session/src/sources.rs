@@ -449,3 +449,32 @@ impl SourceSlot {
         news
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(work: &mut LoadWork) -> Result<SourceStreams, String> {
+        loop {
+            match work.step() {
+                Step::Done(result) => return result,
+                Step::Working | Step::Waiting | Step::Publish(_) => {}
+            }
+        }
+    }
+
+    #[test]
+    fn a_load_counts_what_it_reads_and_a_cancelled_one_ends_as_cancelled() {
+        let source = Source::planted_sample();
+        let size = source.size().expect("bytes");
+        let meter = Arc::new(Meter::default());
+        let loaded = run(&mut source.loader(LoadOptions::default(), Arc::clone(&meter)))
+            .expect("the sample loads");
+        assert_eq!(loaded.demos.len(), 8);
+        assert!(meter.bytes_read() > 0 && meter.bytes_read() <= size, "{} of {size}", meter.bytes_read());
+        let meter = Arc::new(Meter::default());
+        meter.cancel.store(true, std::sync::atomic::Ordering::Relaxed);
+        let err = run(&mut source.loader(LoadOptions::default(), meter)).expect_err("cancelled");
+        assert!(err.contains("cancelled") && err.contains("planted8.mcap"), "{err}");
+    }
+}

@@ -133,6 +133,7 @@ pub(crate) struct AllowedKey {
     pub(crate) rule: Option<dmpscope_core::extract::allowed::PickRule>,
     pub(crate) eps: u64,
     pub(crate) limit: Option<u64>,
+    pub(crate) settle: Option<u64>,
 }
 
 /// The verdict with the pick's evaluation (its row of Table I).

@@ -54,6 +54,11 @@ pub struct Args {
     /// when J is not flat, compliant when it is.
     #[arg(long, value_parser = pick_rule, value_name = "RULE")]
     pick: Option<PickRule>,
+    /// Keep the compliant, critical and smooth picks to gains whose
+    /// spring-damper settles (2 %) within this many unit times (method.md
+    /// section 11, "Settling"; 1 is the motion's own duration).
+    #[arg(long, value_name = "UNIT_TIMES", value_parser = accept_eps)]
+    settle_within: Option<f64>,
 }
 
 /// A pick rule by name.
@@ -142,6 +147,7 @@ fn add_the_allowed(
             rule: args.pick,
             eps: args.accept_eps,
             a_peak_limit: args.a_peak_limit,
+            settle_within: args.settle_within,
         },
     );
     if let Some(why) = model.skill_refusal() {

@@ -16,7 +16,7 @@ use dmpscope_core::load::options::GapPolicy;
 use dmpscope_core::load::options::Grouping;
 use dmpscope_core::load::options::StreamFilter;
 use dmpscope_core::load::options::{LoadOptions, UpAxis};
-use dmpscope_core::load::options::{SegmentPick, SegmentSettings};
+use dmpscope_core::load::options::{Cut, SegmentPick, SegmentSettings};
 use dmpscope_core::load::source::{SourceData, SourceStreams, load_streams, load_streams_at};
 use dmpscope_core::load::units::Units;
 use dmpscope_core::{Model, Notice, PrepSettings, RawDemo, Unusable, build_model};
@@ -120,8 +120,10 @@ pub struct LoadArgs {
     #[arg(long)]
     pub trim_rest: bool,
     /// With --demos segment: which movements of each recording are demos
-    /// (all, first, last, or a number from 1), e.g. `first` keeps the reach
-    /// of each reach-and-return trial.
+    /// (all, first, last, a number from 1, or out / back: those that leave
+    /// the recording's home, or return to it), e.g. `first` keeps the
+    /// reach of each reach-and-return trial, `out` the reaches of a take of
+    /// reaches and returns.
     #[arg(long, default_value = "all", value_parser = SegmentPick::parse, value_name = "WHICH")]
     pub segments: SegmentPick,
     /// An option beyond the method: a stream with a zero or non-finite
@@ -129,6 +131,20 @@ pub struct LoadArgs {
     /// instead of the error naming the sample (method.md section 12).
     #[arg(long)]
     pub drop_bad_orientation: bool,
+    /// Cut each demo (after segmentation and --segments): `farthest` keeps
+    /// it from its start to its farthest point from the start, the reach of
+    /// an out-and-back with no rest at its far end.
+    #[arg(long, value_enum, default_value_t = CutArg::None)]
+    pub cut: CutArg,
+}
+
+/// Where demos are cut, on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum CutArg {
+    /// Not cut.
+    None,
+    /// At the farthest point from the start.
+    Farthest,
 }
 
 /// Length units on the command line.
@@ -185,6 +201,10 @@ impl LoadArgs {
                 ..self.segment_settings()
             },
             drop_bad_orientation: self.drop_bad_orientation,
+            cut: match self.cut {
+                CutArg::None => Cut::None,
+                CutArg::Farthest => Cut::Farthest,
+            },
         }
     }
 

@@ -1,6 +1,7 @@
 //! The page's side of the browser's workers, as the session's
 //! [`Transport`]: dedicated Web Workers (`web/worker.js`), as many as
-//! `navigator.hardwareConcurrency` (at least 2, at most 8), each running
+//! `navigator.hardwareConcurrency` less one left to the page where there
+//! are more than two cores (at least 2, at most 8), each running
 //! its own instance of this module (the page hands them its compiled
 //! `WebAssembly.Module`). `web/index.html` starts them with the page, so
 //! that they have loaded their script by the time the module has compiled;
@@ -67,7 +68,10 @@ impl WebTransport {
             return (None, notices);
         };
         let cores = window.navigator().hardware_concurrency();
-        let n = if cores.is_finite() { cores as usize } else { 2 }.clamp(2, MAX_WORKERS);
+        // One core is left to the page where there are more than two (its
+        // frames); on two, both workers (the page's frames are short).
+        let cores = if cores.is_finite() { cores as usize } else { 2 };
+        let n = if cores > 2 { cores - 1 } else { cores }.clamp(2, MAX_WORKERS);
         let inbox = Rc::new(RefCell::new(Vec::new()));
         let module = wasm_bindgen::module();
         let mut slots = Vec::new();

@@ -2,7 +2,7 @@
 //! topics such as TF child frames), one per file, or the segments of
 //! continuous recordings.
 
-use crate::arrange::segment::split;
+use crate::arrange::segment::{split, split_counted};
 use crate::error::Result;
 use crate::load::demo::RawDemo;
 use crate::load::options::Grouping;
@@ -23,8 +23,7 @@ pub fn group_noting(
     if let Grouping::Segmented(settings) = grouping {
         let mut out = Vec::new();
         for s in &streams {
-            let all = split(s, settings)?;
-            let n = all.len();
+            let (all, n) = split_counted(s, settings)?;
             let kept = settings.keep.pick(all);
             if kept.len() < n {
                 notices.push(Notice::info(format!(

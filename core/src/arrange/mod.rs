@@ -1,7 +1,8 @@
 //! Arrange: a source's streams turned into its demonstrations (method.md
 //! sections 1 and 13): the streams the user chose ([`streams`]), split at
 //! breaks in time ([`gaps`]), grouped one per topic, file or segment
-//! ([`group`], [`segment`]), their end rests measured or trimmed
+//! ([`group`], [`segment`]), cut at their farthest point if asked and
+//! their loops said ([`shape`]), their end rests measured or trimmed
 //! ([`rest`]).
 //!
 //! May use: load.
@@ -10,4 +11,5 @@ pub mod gaps;
 pub mod group;
 pub mod rest;
 pub mod segment;
+pub mod shape;
 pub mod streams;

@@ -8,7 +8,7 @@ use serde::Serialize;
 use crate::error::Result;
 use crate::geom::Vec3;
 use crate::load::demo::RawDemo;
-use crate::load::options::SegmentSettings;
+use crate::load::options::{SegmentPick, SegmentSettings};
 
 /// One demonstration found in a recording, as stamps of the recording.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -64,25 +64,7 @@ pub fn find_segments(demo: &RawDemo, settings: &SegmentSettings) -> Result<Vec<S
     if stamps.len() < 2 {
         return Ok(Vec::new());
     }
-    let speed = speeds(&stamps, &positions, settings.speed_window_s);
-    let min_rest = (settings.min_rest_s * 1e9) as i64;
-    // Rest runs: maximal runs of slow samples lasting at least `min_rest`.
-    let mut rests: Vec<(usize, usize)> = Vec::new();
-    let mut i = 0;
-    while i < stamps.len() {
-        if speed[i] >= settings.rest_speed {
-            i += 1;
-            continue;
-        }
-        let start = i;
-        while i + 1 < stamps.len() && speed[i + 1] < settings.rest_speed {
-            i += 1;
-        }
-        if stamps[i] - stamps[start] >= min_rest {
-            rests.push((start, i));
-        }
-        i += 1;
-    }
+    let rests = rest_runs(&stamps, &positions, settings);
     // Motion lies between rests, and before the first / after the last.
     let mut bounds = Vec::new();
     let mut from = 0;
@@ -108,12 +90,93 @@ pub fn find_segments(demo: &RawDemo, settings: &SegmentSettings) -> Result<Vec<S
         .collect())
 }
 
+/// The rests of a recording in time order (sorted, unique stamps): maximal
+/// runs of samples slower than the rest speed lasting at least the
+/// shortest rest, as `(first, last)` sample indices.
+fn rest_runs(stamps: &[i64], positions: &[Vec3], settings: &SegmentSettings) -> Vec<(usize, usize)> {
+    let speed = speeds(stamps, positions, settings.speed_window_s);
+    let min_rest = (settings.min_rest_s * 1e9) as i64;
+    let mut rests = Vec::new();
+    let mut i = 0;
+    while i < stamps.len() {
+        if speed[i] >= settings.rest_speed {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i + 1 < stamps.len() && speed[i + 1] < settings.rest_speed {
+            i += 1;
+        }
+        if stamps[i] - stamps[start] >= min_rest {
+            rests.push((start, i));
+        }
+        i += 1;
+    }
+    rests
+}
+
+/// How near a rest must be to the home to count as being at home, metres.
+pub const HOME_RADIUS_M: f64 = 0.05;
+
+/// A recording's home (method.md section 13): the place it rests at most.
+/// Each rest's mean position is gathered with the rests within
+/// [`HOME_RADIUS_M`] of the first of their group; the group whose rests
+/// last longest in all is home (the earliest on ties), its first rest's
+/// mean position. `None` without rests.
+pub fn home(demo: &RawDemo, settings: &SegmentSettings) -> Option<Vec3> {
+    let (stamps, positions) = demo.sorted_unique();
+    let rests = rest_runs(&stamps, &positions, settings);
+    let mean = |(a, b): (usize, usize)| {
+        let n = (b - a + 1) as f64;
+        Vec3::from_fn(|ax, _| positions[a..=b].iter().map(|p| p[ax]).sum::<f64>() / n)
+    };
+    let mut groups: Vec<(Vec3, i64)> = Vec::new();
+    for &r in &rests {
+        let at = mean(r);
+        let lasts = stamps[r.1] - stamps[r.0];
+        match groups.iter_mut().find(|(g, _)| (g - at).norm() <= HOME_RADIUS_M) {
+            Some((_, total)) => *total += lasts,
+            None => groups.push((at, lasts)),
+        }
+    }
+    groups
+        .iter()
+        .fold(None::<(Vec3, i64)>, |best, &(at, total)| match best {
+            Some((_, b)) if b >= total => best,
+            _ => Some((at, total)),
+        })
+        .map(|(at, _)| at)
+}
+
 /// The recording cut into its segments, named `name#1`, `name#2`, ...
+/// (`--segments out` and `back` keep those that leave the recording's
+/// home, or return to it; the others are chosen by `SegmentSettings::keep`
+/// afterwards).
 pub fn split(demo: &RawDemo, settings: &SegmentSettings) -> Result<Vec<RawDemo>> {
+    split_counted(demo, settings).map(|(kept, _)| kept)
+}
+
+/// [`split`], with the number of segments found before `out` or `back`
+/// chose.
+pub fn split_counted(demo: &RawDemo, settings: &SegmentSettings) -> Result<(Vec<RawDemo>, usize)> {
     let sorted = demo.sorted();
-    Ok(find_segments(demo, settings)?
+    let segments = find_segments(demo, settings)?;
+    let found = segments.len();
+    let home = match settings.keep {
+        SegmentPick::Out | SegmentPick::Back => home(demo, settings),
+        _ => None,
+    };
+    let (_, positions) = demo.sorted_unique();
+    let near = |i: usize, h: Vec3| (positions[i] - h).norm() <= HOME_RADIUS_M;
+    Ok(segments
         .into_iter()
         .enumerate()
+        .filter(|(_, s)| match (settings.keep, home) {
+            (SegmentPick::Out, Some(h)) => near(s.first, h) && !near(s.last, h),
+            (SegmentPick::Back, Some(h)) => !near(s.first, h) && near(s.last, h),
+            (SegmentPick::Out | SegmentPick::Back, None) => false,
+            _ => true,
+        })
         .map(|(i, s)| {
             sorted.part(
                 s.first..s.last + 1,
@@ -121,5 +184,6 @@ pub fn split(demo: &RawDemo, settings: &SegmentSettings) -> Result<Vec<RawDemo>>
                 format!("{}#{}", demo.topic, i + 1),
             )
         })
-        .collect())
+        .collect::<Vec<_>>())
+    .map(|kept| (kept, found))
 }

@@ -19,7 +19,7 @@ use crate::load::demo::RawDemo;
 use crate::load::options::GapPolicy;
 use crate::load::options::Grouping;
 use crate::load::options::SegmentSettings;
-use crate::load::options::{LoadOptions, StreamFilter, matches_stream};
+use crate::load::options::{Cut, LoadOptions, StreamFilter, matches_stream};
 use crate::load::source::{SourceData, SourceStreams, load_streams};
 use crate::notice::Notice;
 
@@ -110,6 +110,8 @@ pub struct Arrangement {
     pub trim_rest: bool,
     /// What a rest is.
     pub rest: SegmentSettings,
+    /// Where each demo is cut.
+    pub cut: Cut,
     /// The unit the positions were read in (for the warning when their
     /// size suggests another).
     pub units: crate::load::units::Units,
@@ -124,6 +126,7 @@ impl Arrangement {
             demos: options.demos,
             trim_rest: options.trim_rest,
             rest: options.rest,
+            cut: options.cut,
             units: options.units,
         }
     }
@@ -153,8 +156,21 @@ pub fn arrange(
     if !matches!(how.demos, Grouping::PerTopic) {
         out.recount(&owners);
     }
+    if how.cut == Cut::Farthest {
+        for demo in &mut out.demos {
+            if let Some((kept, said)) = crate::arrange::shape::cut_farthest(demo) {
+                *demo = kept;
+                out.notices.push(said);
+            }
+        }
+    }
     let rests = crate::arrange::rest::apply(&mut out.demos, &how.rest, how.trim_rest);
     out.notices.extend(rests);
+    let loops = out
+        .demos
+        .iter()
+        .filter_map(|d| crate::arrange::shape::loop_notice(d, how.filter.min_extent_m));
+    out.notices.extend(loops.collect::<Vec<_>>());
     // Only demos: a map frame or an odometry stream far from the origin
     // that was skipped says nothing about the units.
     let odd_size = out

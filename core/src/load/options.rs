@@ -71,6 +71,10 @@ pub struct LoadOptions {
     pub trim_rest: bool,
     /// What a rest is, for the end rests (the segmentation's settings).
     pub rest: SegmentSettings,
+    /// Cut each demo at its farthest point from its start (`--cut
+    /// farthest`; after segmentation and `--segments`): the reach of an
+    /// out-and-back with no rest at its far end.
+    pub cut: Cut,
     /// An option beyond the method: a stream with an unusable orientation
     /// (zero or not finite) keeps its positions without orientation, with
     /// a warning, instead of the method's error (method.md section 12).
@@ -170,6 +174,17 @@ pub enum GapPolicy {
     Keep,
 }
 
+/// Where each demo is cut (method.md section 13).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Cut {
+    /// Not cut (the default).
+    #[default]
+    None,
+    /// At its farthest point from its start: the reach of an out-and-back.
+    Farthest,
+}
+
 /// Which of a recording's segments are demonstrations.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -184,6 +199,11 @@ pub enum SegmentPick {
     Last,
     /// The N-th movement (1-based) of each recording.
     Nth(usize),
+    /// The movements that leave the recording's home (method.md section
+    /// 13): the reaches of a take of reaches and returns.
+    Out,
+    /// The movements that return to the recording's home: the returns.
+    Back,
 }
 
 impl SegmentPick {
@@ -194,6 +214,9 @@ impl SegmentPick {
             Self::First => all.into_iter().take(1).collect(),
             Self::Last => all.pop().into_iter().collect(),
             Self::Nth(n) => all.into_iter().nth(n.wrapping_sub(1)).into_iter().collect(),
+            // Chosen by where each segment starts and ends
+            // (`arrange::segment::split`), not by its place.
+            Self::Out | Self::Back => all,
         }
     }
 
@@ -204,19 +227,23 @@ impl SegmentPick {
             Self::First => "first".into(),
             Self::Last => "last".into(),
             Self::Nth(n) => n.to_string(),
+            Self::Out => "out".into(),
+            Self::Back => "back".into(),
         }
     }
 
-    /// Parses `all`, `first`, `last` or a positive number.
+    /// Parses `all`, `first`, `last`, `out`, `back` or a positive number.
     pub fn parse(text: &str) -> std::result::Result<Self, String> {
         match text {
             "all" => Ok(Self::All),
             "first" => Ok(Self::First),
             "last" => Ok(Self::Last),
+            "out" => Ok(Self::Out),
+            "back" => Ok(Self::Back),
             n => match n.parse::<usize>() {
                 Ok(n) if n >= 1 => Ok(Self::Nth(n)),
                 _ => Err(format!(
-                    "expected all, first, last or a segment number from 1, got {text:?}"
+                    "expected all, first, last, out, back or a segment number from 1, got {text:?}"
                 )),
             },
         }

@@ -64,6 +64,23 @@ fn allowed_body_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         .labelled_by(l.id);
         ui.label("of J*");
     });
+    ui.horizontal(|ui| {
+        let mut on = s.settle_within.is_some();
+        if ui
+            .checkbox(&mut on, "settle within")
+            .on_hover_text(
+                "keep the compliant, critical and smooth picks to gains whose spring-damper \
+                 settles (2 %) within this many unit times (1: the motion's own duration)",
+            )
+            .changed()
+        {
+            s.settle_within = on.then_some(1.0);
+        }
+        if let Some(v) = &mut s.settle_within {
+            ui.add(egui::DragValue::new(v).range(0.05..=20.0).speed(0.02).fixed_decimals(2));
+            ui.label("unit times");
+        }
+    });
     let Some(view) = session.allowed() else {
         ui.weak("What the demos allow: waiting for the full landscape and the optimum");
         return;
@@ -101,6 +118,20 @@ fn allowed_body_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
                 s.op = (p.dm, p.km);
             }
             ui.label(format!("For the robot: {}", p.robot.text()));
+            ui.label(format!(
+                "Settles (2 %) in {:.3} unit times, {:.3} s",
+                p.settling.unit, p.settling.seconds
+            ));
+            if p.on_edge {
+                ui.colored_label(
+                    Color32::from_rgb(240, 180, 80),
+                    format!(
+                        "On the edge: the pick lies on {} of the box, where its rule would go \
+                         further; widen the box (Settings) or set \"settle within\"",
+                        p.edge
+                    ),
+                );
+            }
         }
         None => {
             let why = a.pick_failure.as_deref().unwrap_or("no pick");

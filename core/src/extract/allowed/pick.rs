@@ -5,7 +5,7 @@
 
 use crate::extract::allowed::numbers::{num, percent};
 use crate::extract::allowed::region::Acceptable;
-use crate::extract::allowed::rule::{COMPLIANT_ZETA, Pick, PickRule};
+use crate::extract::allowed::rule::{COMPLIANT_ZETA, Pick, PickRule, Settling, settling_unit};
 use crate::extract::optimum::Extraction;
 use crate::extract::point::GainPoint;
 use crate::extract::robot::RobotGains;
@@ -13,6 +13,7 @@ use crate::landscape::grid::Landscape;
 use crate::landscape::model::{Model, zeta};
 
 /// What a pick looks at.
+#[derive(Clone, Copy)]
 pub(crate) struct Context<'a> {
     /// The model the points are evaluated with.
     pub(crate) model: &'a Model,
@@ -24,6 +25,8 @@ pub(crate) struct Context<'a> {
     pub(crate) acceptable: &'a Acceptable,
     /// An a_peak limit every pick keeps to.
     pub(crate) limit: Option<f64>,
+    /// A settling limit (unit time) the grid rules' picks keep to.
+    pub(crate) settle_within: Option<f64>,
     /// The demos' mean duration, seconds (the robot's gains).
     pub(crate) duration: f64,
 }
@@ -31,9 +34,13 @@ pub(crate) struct Context<'a> {
 impl Context<'_> {
     /// `, among the gains with a_peak within L` when a limit is set.
     pub(crate) fn limited(&self) -> String {
-        self.limit.map_or(String::new(), |l| {
+        let mut text = self.limit.map_or(String::new(), |l| {
             format!(", among the gains whose a_peak stays within {l} m/s^2")
-        })
+        });
+        if let Some(s) = self.settle_within {
+            text.push_str(&format!(", among the gains that settle within {s} unit times"));
+        }
+        text
     }
 
     /// The gains `rule` picks, evaluated, or why there are none.
@@ -43,14 +50,53 @@ impl Context<'_> {
             _ => self.grid_pick(rule)?,
         };
         let e = self.model.evaluate(dm, km);
+        let edge = self.edge(rule, dm, km);
         Ok(Pick {
             rule,
             at: GainPoint::of(&e, self.extraction.k),
             e_sum: e.e_sum.is_finite().then_some(e.e_sum),
             a_peak_max: e.a_peak.iter().copied().fold(0.0, f64::max),
             why: String::new(),
+            settling: Settling::of(dm, km, self.duration),
+            on_edge: !edge.is_empty(),
+            edge,
             robot: RobotGains::new(dm, km, self.duration),
         })
+    }
+
+    /// The sides of the grid's box the pick of `rule` at `(dm, km)` lies on
+    /// in the direction the rule pushes ("" when none): `compliant` and
+    /// `critical` go to the least K/M (then D/M), `smooth` wherever a_peak
+    /// falls, `optimum` wherever J does (the extraction's own edges).
+    fn edge(&self, rule: PickRule, dm: f64, km: f64) -> String {
+        if rule == PickRule::Optimum {
+            return if self.extraction.on_edge() {
+                self.extraction.edges.describe()
+            } else {
+                String::new()
+            };
+        }
+        let (d, k) = (&self.landscape.dm, &self.landscape.km);
+        let at = |v: f64, axis: &[f64], first: bool| {
+            let end = if first { axis.first() } else { axis.last() };
+            end.is_some_and(|&e| e == v)
+        };
+        let mut sides = Vec::new();
+        if at(km, k, true) {
+            sides.push("the least K/M");
+        }
+        if rule == PickRule::Smooth {
+            if at(dm, d, true) {
+                sides.push("the least D/M");
+            }
+            if at(km, k, false) {
+                sides.push("the greatest K/M");
+            }
+            if at(dm, d, false) {
+                sides.push("the greatest D/M");
+            }
+        }
+        sides.join(" and ")
     }
 
     /// The refined optimum, or under a limit the constrained one.
@@ -102,7 +148,17 @@ impl Context<'_> {
                 let (dm, km) = (self.landscape.dm[i / n_km], self.landscape.km[i % n_km]);
                 [dm, km, zeta(dm, km), peak[i]]
             })
+            .filter(|p| self.settle_within.is_none_or(|s| settling_unit(p[0], p[1]) <= s))
             .collect()
+    }
+
+    /// The region's points within the a_peak limit, whatever their settling.
+    fn candidates_without_settling(&self) -> Vec<[f64; 4]> {
+        Context {
+            settle_within: None,
+            ..*self
+        }
+        .candidates()
     }
 
     /// Why `rule` has no point when no grid point is left (the region
@@ -162,6 +218,16 @@ impl Context<'_> {
 
     fn grid_pick(&self, rule: PickRule) -> Result<(f64, f64), String> {
         let points = self.candidates();
+        if points.is_empty()
+            && let Some(s) = self.settle_within
+            && !self.candidates_without_settling().is_empty()
+        {
+            return Err(format!(
+                "no gains in the acceptable region settle within {s} unit times (2 %): no {} \
+                 pick; a larger --settle-within, or a wider box, finds one",
+                rule.name()
+            ));
+        }
         let limit = self
             .limit
             .map_or(String::new(), |l| format!(" with a_peak within {l}"));

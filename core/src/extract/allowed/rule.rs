@@ -77,8 +77,54 @@ pub struct Pick {
     pub a_peak_max: f64,
     /// Why this rule and this point, in words.
     pub why: String,
+    /// The spring-damper's 2 % settling time there (method.md section 11,
+    /// "Settling").
+    pub settling: Settling,
+    /// Whether it lies on the grid's edge in the direction its rule pushes
+    /// (the rule would go further in a wider box).
+    pub on_edge: bool,
+    /// The sides it lies on in that direction, in words ("" when not).
+    pub edge: String,
     /// The gains in real time at the demos' mean duration.
     pub robot: RobotGains,
+}
+
+/// The 2 % settling time of the spring-damper at a gain pair (method.md
+/// section 11): `ln(50) / sigma`, `sigma` the decay rate of its slowest
+/// mode.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Settling {
+    /// In unit time.
+    pub unit: f64,
+    /// In seconds, at the demos' mean duration.
+    pub seconds: f64,
+}
+
+impl Settling {
+    /// The settling of `(dm, km)` over a motion of `duration` seconds.
+    pub fn of(dm: f64, km: f64, duration: f64) -> Self {
+        let unit = settling_unit(dm, km);
+        Self {
+            unit,
+            seconds: unit * duration,
+        }
+    }
+}
+
+/// The 2 % settling time in unit time (method.md section 11): the decay
+/// rate of the slowest mode is `D/2` when `D^2 < 4 K`, else
+/// `(D - sqrt(D^2 - 4 K)) / 2`; infinite without damping or stiffness.
+pub fn settling_unit(dm: f64, km: f64) -> f64 {
+    if !(dm > 0.0 && km > 0.0) {
+        return f64::INFINITY;
+    }
+    let disc = dm * dm - 4.0 * km;
+    let sigma = if disc < 0.0 {
+        dm / 2.0
+    } else {
+        (dm - disc.sqrt()) / 2.0
+    };
+    crate::portable::ln(50.0) / sigma
 }
 
 /// How to pick.
@@ -91,6 +137,9 @@ pub struct PickSettings {
     pub eps: f64,
     /// An a_peak limit (m/s^2 of unit time) every pick keeps to.
     pub a_peak_limit: Option<f64>,
+    /// A settling limit (unit time) the `compliant`, `critical` and
+    /// `smooth` picks keep to (`--settle-within`; off by default).
+    pub settle_within: Option<f64>,
 }
 
 impl Default for PickSettings {
@@ -99,6 +148,7 @@ impl Default for PickSettings {
             rule: None,
             eps: DEFAULT_EPS,
             a_peak_limit: None,
+            settle_within: None,
         }
     }
 }

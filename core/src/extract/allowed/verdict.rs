@@ -74,6 +74,7 @@ impl Allowed {
             extraction,
             acceptable: &acceptable,
             limit: settings.a_peak_limit,
+            settle_within: settings.settle_within,
             duration,
         };
         let (pick, pick_failure) = choose(&ctx, settings.rule, j_depth, j_flat);
@@ -122,6 +123,19 @@ impl Allowed {
         if let Some(p) = &self.pick {
             s.push_str(&format!("  why: {}\n", p.why));
             s.push_str(&format!("  for the robot: {}\n", p.robot.text()));
+            s.push_str(&format!(
+                "  settling (2 %, ln 50 / sigma): {:.3} unit times, {:.3} s at T = {:.3} s\n",
+                p.settling.unit, p.settling.seconds, p.robot.duration_s
+            ));
+            if p.on_edge {
+                s.push_str(&format!(
+                    "  ON THE EDGE: the {} pick lies on {} of the box, where its rule would go \
+                     further; widen the box (--dm-range / --km-range) or keep the picks to gains \
+                     that settle in time (--settle-within)\n",
+                    p.rule.name(),
+                    p.edge
+                ));
+            }
         }
         if let Some(f) = &self.pick_failure {
             s.push_str(&format!("  {f}\n"));
@@ -239,7 +253,7 @@ fn choose(
     match rule {
         Some(rule) => match ctx.pick(rule) {
             Ok(p) => (
-                Some(p.with_why(format!("asked for: {}", rule.rule_text()))),
+                Some(p.with_why(format!("asked for: {}{}", rule.rule_text(), ctx.limited()))),
                 None,
             ),
             Err(e) => (None, Some(e)),
