@@ -92,7 +92,11 @@ fn one_demo_and_a_rule_without_a_point_are_said_plainly() {
 /// `settle_unit` as method.md section 11 ("Settling") defines it.
 fn settle_unit(dm: f64, km: f64) -> f64 {
     let disc = dm * dm - 4.0 * km;
-    let sigma = if disc < 0.0 { dm / 2.0 } else { (dm - disc.sqrt()) / 2.0 };
+    let sigma = if disc < 0.0 {
+        dm / 2.0
+    } else {
+        (dm - disc.sqrt()) / 2.0
+    };
     50f64.ln() / sigma
 }
 
@@ -101,32 +105,63 @@ fn settle_within_keeps_the_compliant_pick_to_gains_that_settle_in_time() {
     let sample = sample_path();
     let path = sample.to_str().expect("path");
     let run = |extra: &[&str]| -> Value {
-        let out = dmpscope(&[&["extract", path, "--grid", "32", "--no-diagnostics", "--json", "--pick", "compliant"], extra].concat());
+        let out = dmpscope(
+            &[
+                &[
+                    "extract",
+                    path,
+                    "--grid",
+                    "32",
+                    "--no-diagnostics",
+                    "--json",
+                    "--pick",
+                    "compliant",
+                ],
+                extra,
+            ]
+            .concat(),
+        );
         assert!(out.status.success(), "{}", text(&out.stderr));
         serde_json::from_slice(&out.stdout).expect("json")
     };
     // In a box whose least K/M is inside the region the compliant pick sits
     // on that edge, and says so (the rule would go further).
-    let narrow = run(&["--km-range", "850", "1000"]);
+    let narrow = run(&["--dm-range", "5", "60", "--km-range", "900", "1000"]);
     let pick = &narrow["pick"];
     assert_eq!(pick["on_edge"], true, "{pick}");
-    assert!(pick["edge"].as_str().expect("edge").contains("least K/M"), "{pick}");
+    assert!(
+        pick["edge"].as_str().expect("edge").contains("least K/M"),
+        "{pick}"
+    );
     let free = run(&[]);
     assert_eq!(free["pick"]["on_edge"], false, "{}", free["pick"]);
     // With it: the least-K/M point (then D/M) of the rule among the
     // region's points that settle within 1 unit time.
     let kept = run(&["--settle-within", "1"]);
     let pick = &kept["pick"];
-    let (dm, km) = (pick["dm"].as_f64().expect("dm"), pick["km"].as_f64().expect("km"));
+    let (dm, km) = (
+        pick["dm"].as_f64().expect("dm"),
+        pick["km"].as_f64().expect("km"),
+    );
     let t = pick["settling"]["unit"].as_f64().expect("settling");
-    assert!(t <= 1.0 && (t - settle_unit(dm, km)).abs() <= 1e-12 * t, "{pick}");
+    assert!(
+        t <= 1.0 && (t - settle_unit(dm, km)).abs() <= 1e-12 * t,
+        "{pick}"
+    );
     let secs = pick["settling"]["seconds"].as_f64().expect("seconds");
     let duration = pick["robot"]["duration_s"].as_f64().expect("T");
     assert!((secs - t * duration).abs() <= 1e-12 * secs);
     let out = dmpscope(&["landscape", path, "--grid", "32"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let land: Value = serde_json::from_slice(&out.stdout).expect("json");
-    let axis = |k: &str| -> Vec<f64> { land[k].as_array().expect(k).iter().map(|v| v.as_f64().expect("f64")).collect() };
+    let axis = |k: &str| -> Vec<f64> {
+        land[k]
+            .as_array()
+            .expect(k)
+            .iter()
+            .map(|v| v.as_f64().expect("f64"))
+            .collect()
+    };
     let (dms, kms) = (axis("dm"), axis("km"));
     let j_star = kept["optimum"]["j"].as_f64().expect("J*");
     let eps = kept["acceptable"]["eps"].as_f64().expect("eps");
@@ -135,7 +170,8 @@ fn settle_within_keeps_the_compliant_pick_to_gains_that_settle_in_time() {
         for (k, &q) in kms.iter().enumerate() {
             let j = land["j"][i][k].as_f64().unwrap_or(f64::INFINITY);
             let zeta = d / (2.0 * q.sqrt());
-            if j <= (1.0 + eps) * j_star && (0.7..=1.5).contains(&zeta) && settle_unit(d, q) <= 1.0 {
+            if j <= (1.0 + eps) * j_star && (0.7..=1.5).contains(&zeta) && settle_unit(d, q) <= 1.0
+            {
                 let better = best.is_none_or(|(bd, bk)| q < bk || (q == bk && d < bd));
                 if better {
                     best = Some((d, q));
@@ -143,6 +179,16 @@ fn settle_within_keeps_the_compliant_pick_to_gains_that_settle_in_time() {
             }
         }
     }
-    assert_eq!(best, Some((dm, km)), "the grid's least-K/M point that settles in time");
-    assert!(pick["why"].as_str().expect("why").contains("settle within 1"), "{pick}");
+    assert_eq!(
+        best,
+        Some((dm, km)),
+        "the grid's least-K/M point that settles in time"
+    );
+    assert!(
+        pick["why"]
+            .as_str()
+            .expect("why")
+            .contains("settle within 1"),
+        "{pick}"
+    );
 }

@@ -89,8 +89,16 @@ fn a_flat_j_gives_a_pick_and_go_to_the_pick_moves_the_operating_point() {
     h.get_by_label_contains("What the demos allow: compliant")
         .click();
     h.run_steps(2);
-    h.get_by_role_and_label(egui::accesskit::Role::Button, "Go to the pick")
-        .click();
+    // The side panel is taller than the window: scroll to the button.
+    for _ in 0..3 {
+        h.get_by_role_and_label(egui::accesskit::Role::Button, "Go to the pick")
+            .scroll_down();
+        // Until the scroll's animation ends.
+        h.run_steps(10);
+    }
+    let button = h.get_by_role_and_label(egui::accesskit::Role::Button, "Go to the pick");
+    assert!(button.rect().max.y < 800.0, "{:?}", button.rect());
+    button.click();
     h.run_steps(3);
     assert_eq!(h.state().settings.op, (dm, km));
     let row = operating_point_row(&h);

@@ -71,6 +71,7 @@ pub fn build_model<'a>(
         return Err(Error::NoUsableDemo { reasons });
     }
     notices.extend(prepared.iter().filter_map(|p| short_window(p, prep)));
+    notices.extend(noisy(&prepared));
     if let Some(first) = no_rotation.first() {
         let which = match no_rotation.len() {
             1 => first.clone(),
@@ -119,4 +120,40 @@ fn short_window(p: &PreparedDemo, prep: &PrepSettings) -> Option<Notice> {
             1.0 / spacing
         ))
     })
+}
+
+/// A warning naming the demos whose smoothed acceleration is mostly noise
+/// (method.md section 2, "Noise"), with the `--sg-seconds` that smooths
+/// them all (the widest any of them needs).
+fn noisy(prepared: &[PreparedDemo]) -> Option<Notice> {
+    let threshold = crate::prepare::noise::NOISE_DOMINATES;
+    let loud: Vec<&PreparedDemo> = prepared
+        .iter()
+        .filter(|p| p.acc_noise.is_some_and(|n| n > threshold))
+        .collect();
+    let first = loud.first()?;
+    let which = match loud.len() {
+        1 => first.name.clone(),
+        n => format!("{n} demos ({}, ...)", first.name),
+    };
+    let worst = loud
+        .iter()
+        .filter_map(|p| p.acc_noise)
+        .fold(0.0f64, f64::max);
+    let fix = loud
+        .iter()
+        .filter_map(|p| p.suggested_sg_seconds)
+        .fold(None::<f64>, |m, s| Some(m.map_or(s, |m| m.max(s))));
+    let advice = match fix {
+        Some(s) => format!(
+            "--sg-seconds {s} (the app's Settings: SG window in seconds) smooths it below {:.0} %",
+            threshold * 100.0
+        ),
+        None => "a wider Savitzky-Golay window (--sg-seconds) smooths it".to_owned(),
+    };
+    Some(Notice::warning(format!(
+        "{which}: the smoothed acceleration is mostly noise (a twice-wider window changes up to \
+         {:.0} % of it; method.md section 2), and S is computed from it; {advice}",
+        worst * 100.0
+    )))
 }

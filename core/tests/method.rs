@@ -109,6 +109,8 @@ fn dmp_demo(g: [f64; 3], v0: [f64; 3]) -> (PreparedDemo, [f64; 3]) {
         yd: vecs(yd),
         ydd: vecs(ydd),
         orientation: None,
+        acc_noise: None,
+        suggested_sg_seconds: None,
     };
     (demo, c)
 }

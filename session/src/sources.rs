@@ -12,7 +12,9 @@ use std::sync::{Arc, LazyLock, Mutex, PoisonError};
 use dmpscope_core::arrange::streams::{Arrangement, Overrides, StreamInfo, arrange};
 use dmpscope_core::load::access::{FileAt, Meter, Metered, SliceAt, poll_once};
 use dmpscope_core::load::options::{LoadOptions, UpAxis};
-use dmpscope_core::load::source::{SourceData, SourceStreams, load_streams, load_streams_at};
+use dmpscope_core::load::source::{
+    SourceData, SourceStreams, folder_of_metadata, load_streams, load_streams_at,
+};
 use dmpscope_core::{Level, Notice, RawDemo};
 
 use crate::jobs::{Runner, Step, Work};
@@ -186,7 +188,8 @@ impl Source {
                         .map_err(|e| e.to_string())
                 }))
             }
-            Self::Path(p) if p.is_file() => {
+            // A rosbag2 folder's metadata.yaml stands for the folder.
+            Self::Path(p) if p.is_file() && folder_of_metadata(&p).is_none() => {
                 let meter = Arc::clone(&meter);
                 LoadState::Local(Box::pin(async move {
                     let file = FileAt::open(&p).map_err(|e| format!("{name}: {e}"))?;
@@ -471,10 +474,19 @@ mod tests {
         let loaded = run(&mut source.loader(LoadOptions::default(), Arc::clone(&meter)))
             .expect("the sample loads");
         assert_eq!(loaded.demos.len(), 8);
-        assert!(meter.bytes_read() > 0 && meter.bytes_read() <= size, "{} of {size}", meter.bytes_read());
+        assert!(
+            meter.bytes_read() > 0 && meter.bytes_read() <= size,
+            "{} of {size}",
+            meter.bytes_read()
+        );
         let meter = Arc::new(Meter::default());
-        meter.cancel.store(true, std::sync::atomic::Ordering::Relaxed);
+        meter
+            .cancel
+            .store(true, std::sync::atomic::Ordering::Relaxed);
         let err = run(&mut source.loader(LoadOptions::default(), meter)).expect_err("cancelled");
-        assert!(err.contains("cancelled") && err.contains("planted8.mcap"), "{err}");
+        assert!(
+            err.contains("cancelled") && err.contains("planted8.mcap"),
+            "{err}"
+        );
     }
 }

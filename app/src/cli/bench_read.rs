@@ -5,7 +5,7 @@
 //! its peak memory (each read runs in a process of its own:
 //! `bench --read-once`).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 use std::sync::Arc;
 use std::time::Instant;
@@ -140,7 +140,7 @@ fn cat(path: &Path) -> anyhow::Result<f64> {
 }
 
 /// Alternates the three reads `repeat` times and prints their medians.
-pub fn run(path: &PathBuf, topic: &str, repeat: usize, python_too: bool) -> anyhow::Result<()> {
+pub fn run(path: &Path, topic: &str, repeat: usize, python_too: bool) -> anyhow::Result<()> {
     let (mut ours, mut theirs, mut cats) = (Vec::new(), Vec::new(), Vec::new());
     let mut last = None;
     for _ in 0..repeat.max(1) {

@@ -229,8 +229,12 @@ impl DmpApp {
             // The browser reads dropped files asynchronously: they come back
             // through the dialogs.
             let ctx = ctx.clone();
-            self.dialogs
+            let now = self
+                .dialogs
                 .read_dropped(dropped, move || ctx.request_repaint());
+            if !now.is_empty() {
+                answers.push(Answer::Open(now));
+            }
         } else {
             let paths: Vec<Source> = dropped
                 .iter()
@@ -442,8 +446,10 @@ impl eframe::App for DmpApp {
             ui.label(format!("frame {}", ctx.cumulative_frame_nr()));
             return;
         }
+        let played = self.play(&ctx);
         let before = self.settings.clone();
         let commands = self.panels_ui(ui, left_out);
+        self.after_play(played);
         let hover_moved = self.view.end_hover();
         let changed = !commands.is_empty() || self.settings != before;
         if hover_moved {
@@ -468,5 +474,62 @@ impl eframe::App for DmpApp {
     /// clear is the panels' background.
     fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
         visuals.panel_fill.to_normalized_gamma_f32()
+    }
+}
+
+impl DmpApp {
+    /// The durations the playback's cursors follow: the selected demo's and
+    /// a new target's run's.
+    fn durations(&self) -> Option<crate::gui::playback::Durations> {
+        let model = self.session.model()?;
+        let demo = model.demos().get(self.view.selected)?.duration_s;
+        let target = self
+            .session
+            .generalised()
+            .and_then(Result::ok)
+            .map(|g| g.out.duration_s);
+        Some(crate::gui::playback::Durations { demo, target })
+    }
+
+    /// Advances the playback by this frame's time (the space bar plays or
+    /// pauses) and puts the cursors where it is; the cursors as set, to
+    /// tell a move by hand afterwards.
+    fn play(&mut self, ctx: &egui::Context) -> Option<(f64, f64)> {
+        let d = self.durations()?;
+        let p = &mut self.view.playback;
+        if ctx.input(|i| i.key_pressed(egui::Key::Space)) && !ctx.egui_wants_keyboard_input() {
+            p.toggle(d);
+        }
+        if p.playing {
+            let dt = ctx.input(|i| f64::from(i.stable_dt)).min(0.25);
+            p.advance(dt, d);
+            self.view.t = p.demo_t(d);
+            self.view.t_target = p.target_t(d);
+            ctx.request_repaint();
+        }
+        Some((self.view.t, self.view.t_target))
+    }
+
+    /// Follows a cursor moved by hand (a slider, a pointer on a plot): the
+    /// clock goes there, and the other cursor with it.
+    fn after_play(&mut self, set: Option<(f64, f64)>) {
+        let (Some(d), Some((t, t_target))) = (self.durations(), set) else {
+            return;
+        };
+        let p = &mut self.view.playback;
+        if self.view.t != t {
+            p.seek(self.view.t, d);
+        } else if self.view.t_target != t_target {
+            let clock = if p.real_time {
+                self.view.t_target * d.target.unwrap_or(d.demo)
+            } else {
+                self.view.t_target
+            };
+            p.clock = clock;
+        } else {
+            return;
+        }
+        self.view.t = p.demo_t(d);
+        self.view.t_target = p.target_t(d);
     }
 }

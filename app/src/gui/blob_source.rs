@@ -72,6 +72,7 @@ async fn load(
     let exchange = Arc::new(Mutex::new(Exchange::default()));
     let mut access = Metered::new(RemoteAt::new(size, Arc::clone(&exchange)), meter);
     let mut reading = Box::pin(load_streams_at(name, &mut access, &options));
+    let mut ahead = ReadAhead::default();
     let mut reads = 0u64;
     loop {
         if let Some(result) = poll_once(&mut reading) {
@@ -86,15 +87,57 @@ async fn load(
                 "{name}: the reader stopped without asking for bytes"
             ));
         };
-        let answer = read_slice(file, offset, len, size).await;
+        let answer = match ahead.answer(offset, len) {
+            Some(bytes) => Ok(bytes),
+            None => {
+                reads += 1;
+                if reads.is_multiple_of(8) {
+                    wake();
+                }
+                ahead.fetch(file, offset, len, size).await
+            }
+        };
         exchange
             .lock()
             .unwrap_or_else(PoisonError::into_inner)
             .answer = Some(answer);
-        reads += 1;
-        if reads % 16 == 0 {
-            wake();
-        }
+    }
+}
+
+/// The least a read from the browser fetches: each read waits for the
+/// page's event loop (behind a frame, under a software rasteriser), so
+/// small reads (a record's head, a footer) are served from one larger one.
+const AHEAD: usize = 4 << 20;
+
+/// The bytes last fetched, to answer the reads that fall inside them.
+#[derive(Default)]
+struct ReadAhead {
+    start: u64,
+    bytes: Vec<u8>,
+}
+
+impl ReadAhead {
+    /// The answer to a read inside the bytes fetched last.
+    fn answer(&self, offset: u64, len: usize) -> Option<Vec<u8>> {
+        let from = usize::try_from(offset.checked_sub(self.start)?).ok()?;
+        let to = from.checked_add(len)?;
+        self.bytes.get(from..to).map(<[u8]>::to_vec)
+    }
+
+    /// Fetches at least [`AHEAD`] bytes from `offset` (fewer at the file's
+    /// end) and answers the read from them.
+    async fn fetch(
+        &mut self,
+        file: &web_sys::File,
+        offset: u64,
+        len: usize,
+        size: u64,
+    ) -> Result<Vec<u8>, String> {
+        let bytes = read_slice(file, offset, len.max(AHEAD), size).await?;
+        let answer = bytes[..len.min(bytes.len())].to_vec();
+        self.start = offset;
+        self.bytes = bytes;
+        Ok(answer)
     }
 }
 

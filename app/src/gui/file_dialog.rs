@@ -202,20 +202,26 @@ impl Dialogs {
         &self,
         files: Vec<egui::DroppedFileHandle>,
         wake: impl Fn() + Send + Sync + 'static,
-    ) {
-        if files.is_empty() {
-            return;
-        }
+    ) -> Vec<Source> {
         let wake: Wake = Arc::new(wake);
+        // A browser's `File` is a source at once (read in slices later).
+        let mut now = Vec::new();
+        let mut later = Vec::new();
+        for f in files {
+            match dropped_source(&f, &wake) {
+                Some(source) => now.push(source),
+                None => later.push(f),
+            }
+        }
+        let files = later;
+        if files.is_empty() {
+            return now;
+        }
         let tx = self.tx.clone();
         let failed = Answer::Say(Notice::error("cannot read the dropped files"));
         spawn(self.tx.clone(), failed, async move {
             let mut sources = Vec::new();
             for f in files {
-                if let Some(source) = dropped_source(&f, &wake) {
-                    sources.push(source);
-                    continue;
-                }
                 let name = f.path().display().to_string();
                 match read_dropped(&f).await {
                     Ok(bytes) => sources.push(Source::Bytes {
@@ -230,6 +236,7 @@ impl Dialogs {
             let _ = tx.send(Answer::Open(sources));
             wake();
         });
+        now
     }
 }
 

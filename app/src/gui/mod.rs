@@ -19,6 +19,7 @@ mod forcing;
 mod frame_log;
 mod heatmap;
 mod panels;
+mod playback;
 mod plots;
 mod target_plots;
 #[cfg(feature = "testing")]

@@ -54,6 +54,11 @@ pub struct ViewState {
     pub selected: usize,
     /// The time cursor shared by the 3D view and the plots, unit time.
     pub t: f64,
+    /// The new target's run's cursor, unit time (with playback in real
+    /// time it follows the run's own duration).
+    pub t_target: f64,
+    /// Playback.
+    pub playback: super::playback::Playback,
     /// The 3D view's camera and toggles.
     pub view3d: View3d,
     /// The heat maps' textures: J, sum d, S, E, the chosen small map.
@@ -100,6 +105,8 @@ impl ViewState {
         Self {
             selected: 0,
             t: 0.5,
+            t_target: 0.5,
+            playback: super::playback::Playback::default(),
             view3d: View3d::new(render_state),
             maps: Default::default(),
             second_map: Map::Quantity(dmpscope_core::landscape::quantity::Quantity::S),

@@ -93,7 +93,11 @@ pub fn find_segments(demo: &RawDemo, settings: &SegmentSettings) -> Result<Vec<S
 /// The rests of a recording in time order (sorted, unique stamps): maximal
 /// runs of samples slower than the rest speed lasting at least the
 /// shortest rest, as `(first, last)` sample indices.
-fn rest_runs(stamps: &[i64], positions: &[Vec3], settings: &SegmentSettings) -> Vec<(usize, usize)> {
+fn rest_runs(
+    stamps: &[i64],
+    positions: &[Vec3],
+    settings: &SegmentSettings,
+) -> Vec<(usize, usize)> {
     let speed = speeds(stamps, positions, settings.speed_window_s);
     let min_rest = (settings.min_rest_s * 1e9) as i64;
     let mut rests = Vec::new();
@@ -134,7 +138,10 @@ pub fn home(demo: &RawDemo, settings: &SegmentSettings) -> Option<Vec3> {
     for &r in &rests {
         let at = mean(r);
         let lasts = stamps[r.1] - stamps[r.0];
-        match groups.iter_mut().find(|(g, _)| (g - at).norm() <= HOME_RADIUS_M) {
+        match groups
+            .iter_mut()
+            .find(|(g, _)| (g - at).norm() <= HOME_RADIUS_M)
+        {
             Some((_, total)) => *total += lasts,
             None => groups.push((at, lasts)),
         }

@@ -22,7 +22,10 @@ fn reach(demo: &RawDemo) -> Option<(f64, f64, usize)> {
         .iter()
         .map(|p| (p - start).norm())
         .enumerate()
-        .fold((0, 0.0f64), |best, (i, d)| if d > best.1 { (i, d) } else { best });
+        .fold(
+            (0, 0.0f64),
+            |best, (i, d)| if d > best.1 { (i, d) } else { best },
+        );
     Some(((end - start).norm(), far, far_at))
 }
 

@@ -452,6 +452,7 @@ mod tests {
             demos,
             trim_rest: false,
             rest: SegmentSettings::default(),
+            cut: Cut::None,
             units: crate::load::units::Units::M,
         }
     }

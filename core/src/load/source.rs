@@ -275,7 +275,7 @@ fn read_file(path: &Path, label: &str, options: &LoadOptions) -> Result<SourceSt
 }
 
 /// A path naming a rosbag2 folder's `metadata.yaml` stands for the folder.
-fn folder_of_metadata(path: &Path) -> Option<&Path> {
+pub fn folder_of_metadata(path: &Path) -> Option<&Path> {
     let is_metadata = path
         .file_name()
         .is_some_and(|n| n.eq_ignore_ascii_case(ROSBAG2_METADATA));

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Location, Result};
 use crate::geom::Vec3;
 use crate::load::demo::{RawDemo, median, stamp_intervals_s};
+use crate::prepare::noise::acc_noise;
 use crate::prepare::numeric::{interp, linspace};
 use crate::prepare::orientation::{Grids, PreparedOrientation};
 use crate::prepare::savgol::SavGol;
@@ -18,9 +19,7 @@ pub const DEFAULT_GRID_POINTS: usize = 1001;
 /// stamps with gaps far longer than their interval, not a demonstration.
 pub const MAX_RESAMPLED: usize = 1_000_000;
 
-/// The widest window `sg_seconds` gives, samples (its kernels grow with the
-/// square of the width: 501 samples are 0.5 s at 1 kHz).
-pub const MAX_SG_WINDOW: usize = 501;
+pub use crate::prepare::savgol::MAX_SG_WINDOW;
 
 /// Settings of the preprocessing (method.md section 2; the paper's values
 /// are the defaults).
@@ -103,6 +102,14 @@ pub struct PreparedDemo {
     /// no rotation).
     #[serde(default)]
     pub orientation: Option<PreparedOrientation>,
+    /// How much of its smoothed acceleration is noise (method.md section
+    /// 2, "Noise"; `None` where a twice-wider window does not fit).
+    #[serde(default)]
+    pub acc_noise: Option<f64>,
+    /// Where noise dominates, the window (seconds) that brings it below
+    /// the threshold (`--sg-seconds`).
+    #[serde(default)]
+    pub suggested_sg_seconds: Option<f64>,
 }
 
 impl PreparedDemo {
@@ -200,7 +207,9 @@ pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
         sg: &sg,
         total,
     };
-    let (p0, cols) = smooth_axes(&positions, &on)?;
+    let (p0, cols, resampled) = smooth_axes(&positions, &on)?;
+    let spacing = total / (n0 - 1) as f64;
+    let (acc_noise, wider) = acc_noise(&resampled, sg.window(), settings.sg_order, spacing)?;
     let orientation = prepare_orientation(raw, stamps.len(), &on)?;
     let [c_raw, c_y, c_yd, c_ydd] = cols;
     let y_raw = zip3(c_raw);
@@ -218,6 +227,8 @@ pub fn prepare(raw: &RawDemo, settings: &PrepSettings) -> Result<PreparedDemo> {
         yd: zip3(c_yd),
         ydd: zip3(c_ydd),
         orientation,
+        acc_noise,
+        suggested_sg_seconds: wider.map(|w| ((w as f64 * spacing) * 1000.0).ceil() / 1000.0),
     })
 }
 
@@ -258,14 +269,20 @@ fn uniform_points(raw: &RawDemo, total: f64, h: f64) -> Result<usize> {
     Ok(ratio.round_ties_even() as usize + 1)
 }
 
+/// What [`smooth_axes`] gives: the start, the raw, smoothed, velocity and
+/// acceleration columns on the unit-time grid, the uniformly resampled axes.
+type SmoothedAxes = (Vec3, [[Vec<f64>; 3]; 4], [Vec<f64>; 3]);
+
 /// Each axis resampled uniformly, smoothed and differentiated, shifted to
-/// start at 0 and carried to the unit-time grid: the start `p0` and the
-/// columns of the raw, smoothed, velocity and acceleration paths.
-fn smooth_axes(positions: &[Vec3], on: &Grids<'_>) -> Result<(Vec3, [[Vec<f64>; 3]; 4])> {
+/// start at 0 and carried to the unit-time grid: the start `p0`, the
+/// columns of the raw, smoothed, velocity and acceleration paths, and the
+/// uniformly resampled positions (the noise measure's input).
+fn smooth_axes(positions: &[Vec3], on: &Grids<'_>) -> Result<SmoothedAxes> {
     let (total, grid_t, query_t) = (on.total, on.uniform, on.unit);
     let spacing = total / (grid_t.len() - 1) as f64;
     let mut p0 = Vec3::zeros();
     let mut cols: [[Vec<f64>; 3]; 4] = Default::default();
+    let mut uniform: [Vec<f64>; 3] = Default::default();
     for axis in 0..3 {
         let resampled = interp(grid_t, on.t, &column(positions, axis));
         p0[axis] = resampled[0];
@@ -278,6 +295,7 @@ fn smooth_axes(positions: &[Vec3], on: &Grids<'_>) -> Result<(Vec3, [[Vec<f64>; 
         cols[1][axis] = interp(query_t, grid_t, &smooth_shifted);
         cols[2][axis] = interp(query_t, grid_t, &vel);
         cols[3][axis] = interp(query_t, grid_t, &acc);
+        uniform[axis] = resampled;
     }
-    Ok((p0, cols))
+    Ok((p0, cols, uniform))
 }

@@ -5,6 +5,10 @@
 
 use crate::error::{Error, Result};
 
+/// The widest window `sg_seconds` gives, samples (its kernels grow with the
+/// square of the width: 501 samples are 0.5 s at 1 kHz).
+pub const MAX_SG_WINDOW: usize = 501;
+
 /// Smoothed values and first and second derivatives of one signal.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Smoothed {

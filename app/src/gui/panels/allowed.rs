@@ -3,11 +3,12 @@
 //! pick and why, E's identifiability sentence), the gains for the robot at
 //! the pick and the operating point, and a button to go to the pick.
 
-use dmpscope_core::extract::allowed::{PickRule, mean_duration};
+use dmpscope_core::extract::allowed::{Pick, PickRule, mean_duration};
 use dmpscope_core::extract::robot::RobotGains;
 use eframe::egui::{self, Color32};
 
 use super::PanelCtx;
+use crate::session::Settings;
 
 /// The colour of the pick's marker and text.
 pub const PICK_COLOUR: Color32 = Color32::from_rgb(255, 150, 255);
@@ -38,6 +39,37 @@ pub fn allowed_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
 fn allowed_body_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let session = cx.session;
     let s = &mut *cx.settings;
+    rule_settings_ui(ui, s);
+    let Some(view) = session.allowed() else {
+        ui.weak("What the demos allow: waiting for the full landscape and the optimum");
+        return;
+    };
+    let a = &view.allowed;
+    let region = a.acceptable.text();
+    let share = 100.0 * a.acceptable.fraction;
+    if a.j_flat {
+        ui.label(format!(
+            "The data allow {region} ({share:.1} % of the grid)."
+        ));
+    } else {
+        ui.label(format!("Acceptable: {region} ({share:.1} % of the grid)."));
+    }
+    match &a.pick {
+        Some(p) => pick_ui(ui, p, s),
+        None => {
+            let why = a.pick_failure.as_deref().unwrap_or("no pick");
+            ui.colored_label(Color32::from_rgb(240, 180, 80), why);
+        }
+    }
+    if let Some(model) = session.model() {
+        let op = RobotGains::new(s.op.0, s.op.1, mean_duration(model));
+        ui.weak(format!("Operating point for the robot: {}", op.text()));
+    }
+    ui.label(a.identifiability_text().trim());
+}
+
+/// The pick rule, the acceptable region's tolerance and "settle within".
+fn rule_settings_ui(ui: &mut egui::Ui, s: &mut Settings) {
     ui.horizontal(|ui| {
         let auto = "auto (optimum if J is not flat, else compliant)";
         egui::ComboBox::from_label("pick")
@@ -77,70 +109,50 @@ fn allowed_body_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             s.settle_within = on.then_some(1.0);
         }
         if let Some(v) = &mut s.settle_within {
-            ui.add(egui::DragValue::new(v).range(0.05..=20.0).speed(0.02).fixed_decimals(2));
+            ui.add(
+                egui::DragValue::new(v)
+                    .range(0.05..=20.0)
+                    .speed(0.02)
+                    .fixed_decimals(2),
+            );
             ui.label("unit times");
         }
     });
-    let Some(view) = session.allowed() else {
-        ui.weak("What the demos allow: waiting for the full landscape and the optimum");
-        return;
-    };
-    let a = &view.allowed;
-    let region = a.acceptable.text();
-    let share = 100.0 * a.acceptable.fraction;
-    if a.j_flat {
-        ui.label(format!(
-            "The data allow {region} ({share:.1} % of the grid)."
-        ));
-    } else {
-        ui.label(format!("Acceptable: {region} ({share:.1} % of the grid)."));
+}
+
+/// The pick: its gains, why, the button to go there, settling and the edge.
+fn pick_ui(ui: &mut egui::Ui, p: &Pick, s: &mut Settings) {
+    ui.colored_label(
+        PICK_COLOUR,
+        format!(
+            "Picked by {}: D/M {:.3}, K/M {:.3} (zeta {:.3})",
+            p.rule.name(),
+            p.dm,
+            p.km,
+            p.zeta
+        ),
+    );
+    ui.weak(&p.why);
+    if ui
+        .button("Go to the pick")
+        .on_hover_text("make the pick the operating point (Table I, New target, Export, RL use it)")
+        .clicked()
+    {
+        s.op = (p.dm, p.km);
     }
-    match &a.pick {
-        Some(p) => {
-            ui.colored_label(
-                PICK_COLOUR,
-                format!(
-                    "Picked by {}: D/M {:.3}, K/M {:.3} (zeta {:.3})",
-                    p.rule.name(),
-                    p.dm,
-                    p.km,
-                    p.zeta
-                ),
-            );
-            ui.weak(&p.why);
-            if ui
-                .button("Go to the pick")
-                .on_hover_text(
-                    "make the pick the operating point (Table I, New target, Export, RL use it)",
-                )
-                .clicked()
-            {
-                s.op = (p.dm, p.km);
-            }
-            ui.label(format!("For the robot: {}", p.robot.text()));
-            ui.label(format!(
-                "Settles (2 %) in {:.3} unit times, {:.3} s",
-                p.settling.unit, p.settling.seconds
-            ));
-            if p.on_edge {
-                ui.colored_label(
-                    Color32::from_rgb(240, 180, 80),
-                    format!(
-                        "On the edge: the pick lies on {} of the box, where its rule would go \
+    ui.label(format!("For the robot: {}", p.robot.text()));
+    ui.label(format!(
+        "Settles (2 %) in {:.3} unit times, {:.3} s",
+        p.settling.unit, p.settling.seconds
+    ));
+    if p.on_edge {
+        ui.colored_label(
+            Color32::from_rgb(240, 180, 80),
+            format!(
+                "On the edge: the pick lies on {} of the box, where its rule would go \
                          further; widen the box (Settings) or set \"settle within\"",
-                        p.edge
-                    ),
-                );
-            }
-        }
-        None => {
-            let why = a.pick_failure.as_deref().unwrap_or("no pick");
-            ui.colored_label(Color32::from_rgb(240, 180, 80), why);
-        }
+                p.edge
+            ),
+        );
     }
-    if let Some(model) = session.model() {
-        let op = RobotGains::new(s.op.0, s.op.1, mean_duration(model));
-        ui.weak(format!("Operating point for the robot: {}", op.text()));
-    }
-    ui.label(a.identifiability_text().trim());
 }

@@ -44,6 +44,7 @@ pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             start: g.out.start,
             goal: g.out.goal,
             turns: g.out.orientation.as_ref().map(|o| o.q.as_slice()),
+            t: view.t_target,
         });
         let moved = view.view3d.show(
             ui,
@@ -85,7 +86,9 @@ pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
 fn status(ui: &mut egui::Ui, status: &Status, height: f32) {
     ui.allocate_ui(egui::vec2(ui.available_width(), height), |ui| {
         ui.horizontal_wrapped(|ui| {
-            if matches!(status, Status::Loading | Status::Computing(..)) {
+            // While loading the top bar shows the bytes read; a spinner
+            // here would ask for a frame each frame.
+            if matches!(status, Status::Computing(..)) {
                 ui.spinner();
             }
             let colour = match status {

@@ -8,7 +8,7 @@ use eframe::egui;
 
 use super::super::commands::Command;
 use super::super::view_state::{RightTab, ViewState};
-use super::super::{forcing, plots, target_plots, tradeoff};
+use super::super::{forcing, playback, plots, target_plots, tradeoff};
 use super::{PanelCtx, diagnostics, generalise};
 use crate::session::{Session, Settings, TargetSource};
 
@@ -66,6 +66,17 @@ fn demo_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>, model: &Model) {
         .labelled_by(label.id);
         view.t = (seconds / demo.duration_s).clamp(0.0, 1.0);
     });
+    ui.horizontal(|ui| {
+        let target = session
+            .generalised()
+            .and_then(Result::ok)
+            .map(|g| g.out.duration_s);
+        let d = playback::Durations {
+            demo: demo.duration_s,
+            target,
+        };
+        playback::controls_ui(ui, &mut view.playback, d);
+    });
     let turn = session.turns().get(view.selected).and_then(Option::as_ref);
     if turn.is_some() {
         ui.horizontal(|ui| {
@@ -108,8 +119,17 @@ fn generalised_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
                 duration_s: d.duration_s,
             })
         });
-    if let Some(t) = target_plots::show(ui, g, own, cx.view.t) {
-        cx.view.t = t;
+    if let Some(d) = model.demos().get(cx.view.selected).map(|d| d.duration_s) {
+        ui.horizontal(|ui| {
+            let d = playback::Durations {
+                demo: d,
+                target: Some(g.out.duration_s),
+            };
+            playback::controls_ui(ui, &mut cx.view.playback, d);
+        });
+    }
+    if let Some(t) = target_plots::show(ui, g, own, cx.view.t_target) {
+        cx.view.t_target = t;
     }
 }
 

@@ -50,9 +50,12 @@ pub fn top_bar_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             .max(session.sources().count());
         ui.label(format!("{files} file(s), {} demos", session.demos().len()));
         if session.loading() {
-            ui.spinner();
+            // A bar where the bytes are counted; a spinner (a frame each
+            // frame) only where they are not.
+            if !reading_ui(ui, cx) {
+                ui.spinner();
+            }
             ui.label("loading…");
-            reading_ui(ui, cx);
         }
         match session.status() {
             Status::Computing(done, total) if total > 0 => {
@@ -110,13 +113,15 @@ fn export_menu(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
 }
 
 /// Each recording being read: its name, the bytes read of its size, and
-/// Cancel (the recording stays, unread).
-fn reading_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
+/// Cancel (the recording stays, unread); whether there was one.
+fn reading_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) -> bool {
     let mut cancel = None;
+    let mut any = false;
     for (i, slot) in cx.session.recordings().iter().enumerate() {
         let Some((read, size)) = slot.progress() else {
             continue;
         };
+        any = true;
         let name = slot.source.name();
         let short = name.rsplit(['/', '\\']).next().unwrap_or(&name).to_owned();
         ui.add(
@@ -139,4 +144,5 @@ fn reading_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     if let Some(i) = cancel {
         cx.push(session::Command::CancelLoading(i));
     }
+    any
 }

@@ -31,6 +31,8 @@ pub struct TargetOverlay<'a> {
     pub goal: geom::Vec3,
     /// Its orientation on the grid, where the run has one.
     pub turns: Option<&'a [[f64; 4]]>,
+    /// Its time cursor, unit time.
+    pub t: f64,
 }
 
 /// A handle of the overlay.
@@ -318,6 +320,7 @@ impl View3d {
                     Handle::Goal => 1,
                 }),
                 turns: ov.turns,
+                t: ov.t,
             }),
             demo_turns: &demo_turns,
             regen_turns: &regen_turns,

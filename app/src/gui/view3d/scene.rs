@@ -80,6 +80,8 @@ pub struct SceneTarget<'a> {
     pub active: Option<usize>,
     /// Its orientation on the grid, where the run has one.
     pub turns: Option<&'a [QuatXyzw]>,
+    /// Its time cursor, unit time.
+    pub t: f64,
 }
 
 /// The scene's frame: the origin subtracted from world points and the box
@@ -527,7 +529,7 @@ fn generalised_run(
     out.dot(start, handle(0), 10.0 * ppp);
     out.dot(goal, handle(1), 16.0 * ppp);
     out.dot(goal, DARK, 8.0 * ppp);
-    if let Some(p) = at_time(&path, input.t) {
+    if let Some(p) = at_time(&path, g.t) {
         out.dot(p, [0.1, 0.1, 0.1, 1.0], 12.0 * ppp);
         out.dot(p, [0.97, 0.97, 0.97, 1.0], 8.0 * ppp);
     }

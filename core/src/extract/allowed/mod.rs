@@ -11,5 +11,7 @@ pub mod verdict;
 
 pub use numbers::{num, percent};
 pub use region::{Acceptable, EXCESS_SMALL, e_depth};
-pub use rule::{COMPLIANT_ZETA, DEFAULT_EPS, Pick, PickRule, PickSettings, Settling, settling_unit};
+pub use rule::{
+    COMPLIANT_ZETA, DEFAULT_EPS, Pick, PickRule, PickSettings, Settling, settling_unit,
+};
 pub use verdict::{Allowed, mean_duration};

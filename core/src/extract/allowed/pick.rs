@@ -38,7 +38,9 @@ impl Context<'_> {
             format!(", among the gains whose a_peak stays within {l} m/s^2")
         });
         if let Some(s) = self.settle_within {
-            text.push_str(&format!(", among the gains that settle within {s} unit times"));
+            text.push_str(&format!(
+                ", among the gains that settle within {s} unit times"
+            ));
         }
         text
     }
@@ -148,7 +150,10 @@ impl Context<'_> {
                 let (dm, km) = (self.landscape.dm[i / n_km], self.landscape.km[i % n_km]);
                 [dm, km, zeta(dm, km), peak[i]]
             })
-            .filter(|p| self.settle_within.is_none_or(|s| settling_unit(p[0], p[1]) <= s))
+            .filter(|p| {
+                self.settle_within
+                    .is_none_or(|s| settling_unit(p[0], p[1]) <= s)
+            })
             .collect()
     }
 

@@ -146,7 +146,7 @@ fn chunk_index(body: &[u8]) -> Option<ChunkIndex> {
     let u32_at = |pos: usize| Some(u32::from_le_bytes(body.get(pos..pos + 4)?.try_into().ok()?));
     let map_len = u32_at(32)? as usize;
     let map = body.get(36..36usize.checked_add(map_len)?)?;
-    if map_len % 10 != 0 {
+    if !map_len.is_multiple_of(10) {
         return None;
     }
     let message_index_offsets = map
@@ -479,7 +479,7 @@ fn message_index(block: &[u8], at: usize) -> Option<Vec<u64>> {
     let body = block.get(at + 9..(at + 9).checked_add(usize::try_from(len).ok()?)?)?;
     let n = u32::from_le_bytes(body.get(2..6)?.try_into().ok()?) as usize;
     let entries = body.get(6..6usize.checked_add(n)?)?;
-    if n % 16 != 0 {
+    if !n.is_multiple_of(16) {
         return None;
     }
     Some(
