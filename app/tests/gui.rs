@@ -37,6 +37,22 @@ fn operating_point_row(h: &Harness<'_, DmpApp>) -> dmpscope_core::TableRow {
         .expect("an operating-point row")
 }
 
+/// Scrolls the side panel down until the node is in the window.
+fn scroll_into_view<'h>(
+    h: &mut Harness<'h, DmpApp>,
+    node: impl for<'a> Fn(&'a Harness<'h, DmpApp>) -> egui_kittest::Node<'a>,
+) {
+    for _ in 0..20 {
+        if node(h).rect().max.y < 780.0 {
+            return;
+        }
+        node(h).scroll_down();
+        // Until the scroll's animation ends.
+        h.run_steps(10);
+    }
+    panic!("not scrolled into view: {:?}", node(h).rect());
+}
+
 fn add(h: &mut Harness<'_, DmpApp>, sources: Vec<Source>) {
     let ctx = h.ctx.clone();
     h.state_mut().apply(
@@ -590,5 +606,49 @@ fn table_i_lays_out_the_cells_in_sight_and_scrolls_to_the_rest() {
         h.query_all_by_label("Operating point").count(),
         0,
         "the first column scrolled out"
+    );
+}
+
+#[test]
+fn loading_cuts_out_and_back_trials_at_their_farthest_point() {
+    use dmpscope_core::load::options::{Cut, Grouping, SegmentPick, SegmentSettings};
+    let path = support::takes::trials("gui-trials.mcap");
+    let mut h = harness_on(vec![Source::Path(path.into())], Runner::inline());
+    h.state_mut().settings.load.demos = Grouping::Segmented(SegmentSettings {
+        keep: SegmentPick::First,
+        ..SegmentSettings::default()
+    });
+    h.run_steps(3);
+    let said = |h: &Harness<'_, DmpApp>, what: &str| {
+        h.state()
+            .session()
+            .messages()
+            .iter()
+            .any(|m| m.text.contains(what))
+    };
+    assert_eq!(h.state().session().demos().len(), 6);
+    assert!(said(&h, "/trial_3#1: ends"), "the loop is said");
+    scroll_into_view(&mut h, |h| h.get_by_label("Loading"));
+    h.get_by_label("Loading").click();
+    h.run_steps(2);
+    let label = "each demo at its farthest point";
+    let role = egui::accesskit::Role::CheckBox;
+    scroll_into_view(&mut h, |h| h.get_by_role_and_label(role, label));
+    h.get_by_role_and_label(role, label).click();
+    h.run_steps(4);
+    assert_eq!(h.state().settings.load.cut, Cut::Farthest);
+    assert!(said(&h, "/trial_3#1: cut at its farthest point"));
+    assert!(said(&h, "/trial_6#1: cut at its farthest point"));
+    let reaches: Vec<f64> = h
+        .state()
+        .session()
+        .demos()
+        .iter()
+        .map(|d| (d.info.goal[0] - d.info.start[0]).hypot(d.info.goal[1] - d.info.start[1]))
+        .collect();
+    assert_eq!(reaches.len(), 6);
+    assert!(
+        reaches.iter().all(|r| (r - 0.35).abs() < 0.01),
+        "{reaches:?}"
     );
 }

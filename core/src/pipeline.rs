@@ -152,8 +152,9 @@ fn noisy(prepared: &[PreparedDemo]) -> Option<Notice> {
         None => "a wider Savitzky-Golay window (--sg-seconds) smooths it".to_owned(),
     };
     Some(Notice::warning(format!(
-        "{which}: the smoothed acceleration is mostly noise (a twice-wider window changes up to \
-         {:.0} % of it; method.md section 2), and S is computed from it; {advice}",
+        "{which}: the smoothed acceleration is mostly noise (the position noise through the \
+         Savitzky-Golay window is up to {:.0} % of its RMS; method.md section 2, \"Noise\"), and S \
+         is computed from it; {advice}",
         worst * 100.0
     )))
 }

@@ -277,6 +277,21 @@ try {
   const row = (s) => s.rows.find((r) => r.name === "Operating point");
   check(row(after).dm === after.op[0] && row(after).j !== row(before).j, "Table I's operating-point row followed");
 
+  // Playback (issue 44): the space bar plays, the cursor moves by the
+  // frames' real time, the space bar pauses.
+  const still = (await state()).playback;
+  check(!still.playing, "playback starts paused");
+  await page.keyboard.press("Space");
+  const playing = await until("the playback", (s) => s.playback.playing && s.playback.t !== still.t, 10000);
+  await page.waitForTimeout(700);
+  const later = (await state()).playback;
+  check(later.playing && later.t !== playing.playback.t,
+    `the cursor moves while playing (${still.t.toFixed(3)} -> ${playing.playback.t.toFixed(3)} -> ${later.t.toFixed(3)})`);
+  await page.keyboard.press("Space");
+  const paused = await until("the pause", (s) => !s.playback.playing, 10000);
+  await page.waitForTimeout(400);
+  check((await state()).playback.t === paused.playback.t, "the space bar pauses it");
+
   // A file dropped on the page (the sample again, as a second file).
   const sample = (await readFile(join(here, "..", "..", "assets", "reach10.mcap"))).toString("base64");
   await page.evaluate((b64) => {

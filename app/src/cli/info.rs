@@ -4,6 +4,7 @@
 
 use dmpscope_core::arrange::segment::find_segments;
 use dmpscope_core::report::text::{pad_right, widest};
+use dmpscope_core::{DemoInfo, PrepSettings, prepare};
 
 use super::inputs::LoadArgs;
 
@@ -18,32 +19,72 @@ pub struct Args {
     /// Print JSON instead of a table.
     #[arg(long)]
     json: bool,
+    /// The Savitzky-Golay window as a duration, seconds, for the noise
+    /// column (as extract's --sg-seconds; default: the paper's 21 samples).
+    #[arg(long, value_name = "S")]
+    sg_seconds: Option<f64>,
+}
+
+/// A demo's line: what was recorded, and how much of its smoothed
+/// acceleration is noise (method.md section 2, "Noise").
+#[derive(serde::Serialize)]
+struct InfoRow {
+    #[serde(flatten)]
+    info: DemoInfo,
+    /// The noise share of the smoothed acceleration (`None`: not measured).
+    acc_noise: Option<f64>,
+    /// Where noise dominates, the `--sg-seconds` that smooths it.
+    suggested_sg_seconds: Option<f64>,
+}
+
+fn rows(demos: &[dmpscope_core::RawDemo], sg_seconds: Option<f64>) -> Vec<InfoRow> {
+    let prep = PrepSettings {
+        sg_seconds,
+        ..PrepSettings::default()
+    };
+    demos
+        .iter()
+        .map(|d| {
+            let prepared = prepare(d, &prep).ok();
+            InfoRow {
+                info: d.info(),
+                acc_noise: prepared.as_ref().and_then(|p| p.acc_noise),
+                suggested_sg_seconds: prepared.and_then(|p| p.suggested_sg_seconds),
+            }
+        })
+        .collect()
 }
 
 fn xyz(p: [f64; 3]) -> String {
     format!("({:+.3}, {:+.3}, {:+.3})", p[0], p[1], p[2])
 }
 
-/// Lists name, samples, duration, median rate, start, goal and whether it
-/// carries orientations, for every demo.
+/// Lists name, samples, duration, median rate, start, goal, whether it
+/// carries orientations and its acceleration's noise share, for every demo.
 pub fn run(args: Args) -> anyhow::Result<()> {
     if args.segment {
         return segments(&args);
     }
     let demos = args.load.load_demos()?;
-    let infos: Vec<_> = demos.iter().map(|d| d.info()).collect();
+    let rows = rows(&demos, args.sg_seconds);
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&infos)?);
+        println!("{}", serde_json::to_string_pretty(&rows)?);
         return Ok(());
     }
-    let width = widest(infos.iter().map(|i| i.name.as_str()), 4);
+    let width = widest(rows.iter().map(|r| r.info.name.as_str()), 4);
     println!(
-        "{:<width$}  {:>7}  {:>8}  {:>8}  {:<26}  {:<26}  orientation",
-        "demo", "samples", "duration", "rate", "start [m]", "goal [m]"
+        "{:<width$}  {:>7}  {:>8}  {:>8}  {:<26}  {:<26}  {:<11}  acc. noise",
+        "demo", "samples", "duration", "rate", "start [m]", "goal [m]", "orientation"
     );
-    for i in &infos {
+    for r in &rows {
+        let i = &r.info;
+        let noise = match (r.acc_noise, r.suggested_sg_seconds) {
+            (None, _) => "-".to_owned(),
+            (Some(n), None) => format!("{:.0} %", 100.0 * n),
+            (Some(n), Some(s)) => format!("{:.0} % (--sg-seconds {s})", 100.0 * n),
+        };
         println!(
-            "{}  {:>7}  {:>7.3}s  {:>6.1}Hz  {:<26}  {:<26}  {}",
+            "{}  {:>7}  {:>7.3}s  {:>6.1}Hz  {:<26}  {:<26}  {:<11}  {noise}",
             pad_right(&i.name, width),
             i.n_samples,
             i.duration_s,
@@ -53,7 +94,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             if i.orientation { "yes" } else { "none" }
         );
     }
-    eprintln!("{} demonstrations", infos.len());
+    eprintln!("{} demonstrations", rows.len());
     Ok(())
 }
 

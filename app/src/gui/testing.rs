@@ -108,6 +108,11 @@ impl DmpApp {
             "reading": reading_json(session),
             "wasm_memory_bytes": wasm_memory_bytes(),
             "page_frame_work_ms": self.frame_watch.work_ms,
+            "playback": {
+                "playing": self.view.playback.playing,
+                "t": self.view.t,
+                "t_target": self.view.t_target,
+            },
         })
     }
 }

@@ -1,6 +1,8 @@
 //! What the end-to-end tests share: the repository, the binary, temp files.
 #![allow(dead_code)]
 
+pub mod takes;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 

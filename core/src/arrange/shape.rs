@@ -11,6 +11,11 @@ use crate::notice::Notice;
 /// (method.md section 13): a loop.
 pub const LOOP_SHARE: f64 = 0.2;
 
+/// A demo whose end is this close to its farthest distance (as a share of
+/// it) already ends at its farthest point: `--cut farthest` leaves it, so
+/// that tracker noise near a goal the hand rested at cuts nothing.
+pub const ENDS_FARTHEST: f64 = 0.98;
+
 /// Its start-to-end distance and its farthest distance from its start, in
 /// time order, metres.
 fn reach(demo: &RawDemo) -> Option<(f64, f64, usize)> {
@@ -51,11 +56,12 @@ pub fn loop_notice(demo: &RawDemo, min_extent_m: f64) -> Option<Notice> {
 }
 
 /// The demo from its start to its farthest point from its start, and what
-/// was cut; `None` when the farthest point is its end (nothing to cut).
+/// was cut; `None` when it already ends at its farthest point (within
+/// [`ENDS_FARTHEST`]: nothing to cut).
 pub fn cut_farthest(demo: &RawDemo) -> Option<(RawDemo, Notice)> {
     let sorted = demo.sorted();
-    let (_, far, far_at) = reach(&sorted)?;
-    if far_at + 1 >= sorted.positions.len() || far_at < 1 {
+    let (ends, far, far_at) = reach(&sorted)?;
+    if far_at + 1 >= sorted.positions.len() || far_at < 1 || ends >= ENDS_FARTHEST * far {
         return None;
     }
     let kept = sorted.part(0..far_at + 1, demo.name.clone(), demo.topic.clone());

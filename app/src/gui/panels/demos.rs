@@ -50,7 +50,11 @@ pub fn demos_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
                 } else {
                     label
                 };
-                let response = ui.checkbox(&mut included, label);
+                let prepared = model_index
+                    .and_then(|m| session.model().and_then(|model| model.demos().get(m)));
+                let response = ui
+                    .checkbox(&mut included, label)
+                    .on_hover_text(demo_details(prepared));
                 if response.hovered() {
                     cx.view.hovering = model_index;
                 }
@@ -73,4 +77,23 @@ pub fn demos_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             cx.push(session::Command::ClearMessages);
         }
     }
+}
+
+/// A demo's details on hover: its rate and how much of its smoothed
+/// acceleration is noise (method.md section 2, "Noise").
+fn demo_details(prepared: Option<&dmpscope_core::PreparedDemo>) -> String {
+    let Some(p) = prepared else {
+        return "not in the model".to_owned();
+    };
+    let rate = 1.0 / p.median_interval_s.max(1e-12);
+    let noise = match (p.acc_noise, p.suggested_sg_seconds) {
+        (None, _) => "acceleration noise: not measured (too few samples)".to_owned(),
+        (Some(n), None) => format!("acceleration noise: {:.0} % of its RMS", 100.0 * n),
+        (Some(n), Some(s)) => format!(
+            "acceleration noise: {:.0} % of its RMS, mostly noise; an SG window of {s} s \
+             (Settings) smooths it",
+            100.0 * n
+        ),
+    };
+    format!("{rate:.0} Hz, {} resampled points\n{noise}", p.n0)
 }

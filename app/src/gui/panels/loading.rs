@@ -8,7 +8,7 @@
 use dmpscope_core::load::options::GapPolicy;
 use dmpscope_core::load::options::Grouping;
 use dmpscope_core::load::options::UpAxis;
-use dmpscope_core::load::options::{SegmentPick, SegmentSettings};
+use dmpscope_core::load::options::{Cut, SegmentPick, SegmentSettings};
 use dmpscope_core::load::units::Units;
 use eframe::egui;
 
@@ -84,6 +84,8 @@ fn loading_segment_pick_ui(ui: &mut egui::Ui, keep: &mut SegmentPick) {
             (SegmentPick::All, "all"),
             (SegmentPick::First, "first"),
             (SegmentPick::Last, "last"),
+            (SegmentPick::Out, "out"),
+            (SegmentPick::Back, "back"),
         ] {
             ui.radio_value(keep, pick, name);
         }
@@ -104,13 +106,30 @@ fn loading_segment_pick_ui(ui: &mut egui::Ui, keep: &mut SegmentPick) {
         }
     })
     .response
-    .on_hover_text("e.g. first: the reach of each reach-and-return trial");
+    .on_hover_text(
+        "e.g. first: the reach of each reach-and-return trial; out: the movements that leave \
+         the recording's home (where it rests most), the reaches of a take of reaches and \
+         returns; back: those that return home",
+    );
     ui.end_row();
 }
 
 /// The rests-at-the-ends row: trim them or keep them (reported either way;
 /// a rest is the segmentation's, below its rest speed for its rest time).
 fn loading_rests_ui(ui: &mut egui::Ui, load: &mut dmpscope_core::load::options::LoadOptions) {
+    ui.label("cut");
+    let mut farthest = load.cut == Cut::Farthest;
+    if ui
+        .checkbox(&mut farthest, "each demo at its farthest point")
+        .on_hover_text(
+            "keep each demo from its start to its farthest point from the start: the reach \
+             of an out-and-back with no rest at its far end (docs/method.md section 13)",
+        )
+        .changed()
+    {
+        load.cut = if farthest { Cut::Farthest } else { Cut::None };
+    }
+    ui.end_row();
     ui.label("rests at the ends");
     ui.checkbox(&mut load.trim_rest, "trim").on_hover_text(
         "cut each demo's standing still before and after the motion (changes what unit \
