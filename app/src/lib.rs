@@ -1,5 +1,6 @@
 #![doc = include_str!("../README.md")]
 
+pub mod figure;
 pub mod gui;
 pub use dmpscope_session as session;
 #[cfg(target_arch = "wasm32")]

@@ -19,7 +19,7 @@ fn main() -> std::process::ExitCode {
     quiet_on_closed_stdout();
     let args = cli::Cli::parse();
     let result = match args.command {
-        None => dmpscope::gui::run(args.files),
+        None => dmpscope::gui::run(args.files, args.pin),
         Some(_) => cli::run(args),
     };
     match result {

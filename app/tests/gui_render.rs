@@ -112,6 +112,22 @@ fn the_window_matches_its_baseline() {
 }
 
 #[test]
+fn pinned_sets_are_drawn_in_their_colours() {
+    if !have_lavapipe() {
+        return;
+    }
+    let mut h = harness();
+    h.state_mut().pin_by_text("extracted, Hrstc1, Hrstc4");
+    h.run_steps(3);
+    h.get_by_label("Compare gain sets (3 pinned)").click();
+    h.run_steps(2);
+    h.get_by_role_and_label(egui::accesskit::Role::CheckBox, "comparison table")
+        .click();
+    h.run_steps(3);
+    h.snapshot("window_pinned");
+}
+
+#[test]
 fn the_3d_view_draws_the_demos_and_hides_them_on_request() {
     if !have_lavapipe() {
         return;

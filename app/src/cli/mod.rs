@@ -4,6 +4,7 @@
 mod bench;
 mod bench_ingest;
 mod bench_read;
+mod compare;
 mod extract;
 mod gen_sample;
 mod info;
@@ -27,6 +28,10 @@ pub struct Cli {
     /// Recordings to open in the app.
     #[arg(value_name = "FILES")]
     pub files: Vec<std::path::PathBuf>,
+    /// Gain sets to pin in the app once they are known: Table I's row
+    /// names or D/M:K/M, comma separated (as `compare --gains`).
+    #[arg(long, value_name = "GAINS")]
+    pub pin: Option<String>,
     /// Print details too (each skipped topic of a file that has many).
     #[arg(short, long, global = true)]
     pub verbose: bool,
@@ -43,6 +48,9 @@ pub enum Command {
     Extract(extract::Args),
     /// Regenerate every demo at one gain pair.
     Regen(regen::Args),
+    /// Compare gain sets side by side (numbers, settling, a new target) and
+    /// draw their regenerations.
+    Compare(compare::Args),
     /// Train an RL agent whose action is the DMP forcing term (PPO).
     Rl(rl::Args),
     /// Measure the landscape and operating-point speed.
@@ -63,6 +71,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Landscape(a)) => landscape::run(a),
         Some(Command::Extract(a)) => extract::run(a),
         Some(Command::Regen(a)) => regen::run(a),
+        Some(Command::Compare(a)) => compare::run(a),
         Some(Command::Rl(a)) => rl::run(a),
         Some(Command::Bench(a)) => bench::run(a),
         Some(Command::GenSample(a)) => gen_sample::run(a),

@@ -89,7 +89,8 @@ struct Run {
     skill: Option<Skill>,
 }
 
-fn vec3(what: &str, v: &Option<Vec<f64>>) -> anyhow::Result<Option<Vec3>> {
+/// A point argument of three numbers.
+pub(super) fn vec3(what: &str, v: &Option<Vec<f64>>) -> anyhow::Result<Option<Vec3>> {
     match v.as_deref() {
         None => Ok(None),
         Some([x, y, z]) => Ok(Some(Vec3::new(*x, *y, *z))),

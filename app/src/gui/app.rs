@@ -9,8 +9,7 @@ use dmpscope_core::Notice;
 use eframe::egui;
 use eframe::egui_wgpu;
 
-use super::commands::{Command, Export};
-use super::export::heatmap_png;
+use super::commands::Command;
 use super::file_dialog::{Answer, Dialogs};
 use super::frame_log::FrameLog;
 use super::panels;
@@ -34,12 +33,17 @@ pub struct DmpApp {
     /// eframe runs, native and web) instead of each panel filling its rect
     /// (test harnesses, whose renderer clears to transparent).
     clear_paints_background: bool,
+    /// Gain sets `--pin` named, pinned once they are known.
+    pending_pins: Option<String>,
     #[cfg(feature = "testing")]
     pub(super) frame_watch: super::test_hooks::FrameWatch,
     /// The browser tests' requests and the state they read.
     #[cfg(feature = "testing")]
     pub(super) hooks: Option<super::test_hooks::SharedHooks>,
 }
+
+mod exports;
+mod pins;
 
 impl DmpApp {
     /// The app on `files` (the bundled planted8 sample when empty: demos that
@@ -78,6 +82,7 @@ impl DmpApp {
             dialogs: Dialogs::default(),
             frame_log: FrameLog::from_env(),
             clear_paints_background: false,
+            pending_pins: None,
             #[cfg(feature = "testing")]
             frame_watch: Default::default(),
             #[cfg(feature = "testing")]
@@ -145,79 +150,6 @@ impl DmpApp {
             },
             Command::Select(i) => self.view.selected = i,
         }
-    }
-
-    /// The file name and bytes of an export (what the save dialog is
-    /// given; tests read it).
-    pub fn export(&self, what: Export) -> Result<(String, Vec<u8>), String> {
-        let report = || {
-            self.session
-                .report()
-                .ok_or_else(|| "nothing to export yet: no model".to_owned())
-        };
-        Ok(match what {
-            Export::Map(map) => {
-                let shown = self.session.shown().ok_or("no landscape to export yet")?;
-                let bytes =
-                    heatmap_png(map.values(shown), &shown.grid(), self.settings.log_colour)?;
-                (map.file_name(), bytes)
-            }
-            Export::ReportJson => {
-                let text = serde_json::to_string_pretty(&report()?).map_err(|e| e.to_string())?;
-                ("dmpscope-report.json".into(), text.into_bytes())
-            }
-            Export::TableCsv => ("dmpscope-table.csv".into(), report()?.csv().into_bytes()),
-            Export::TableMarkdown => (
-                "dmpscope-table.md".into(),
-                report()?.markdown().into_bytes(),
-            ),
-            Export::Dmp => ("dmpscope-dmp.json".into(), self.dmp_json()?.into_bytes()),
-        })
-    }
-
-    /// The run at the new target as `docs/export.md`'s document.
-    fn dmp_json(&self) -> Result<String, String> {
-        use dmpscope_core::export::dmp_doc::{DocContext, dmp_document};
-        let model = self
-            .session
-            .model()
-            .ok_or("nothing to export yet: no model")?;
-        let g = match self.session.generalised() {
-            Some(Ok(g)) => g,
-            Some(Err(e)) => return Err(format!("the run at the new target failed: {e}")),
-            None => return Err("turn on the run at a new target first (New target tab)".into()),
-        };
-        let skill = g.forcing_sd.is_some();
-        let demos = if skill {
-            model.demos().iter().map(|d| d.name.clone()).collect()
-        } else {
-            vec![g.primitive.name.clone()]
-        };
-        let scaling = self
-            .session
-            .generalise_spec()
-            .map(|s| s.target.scaling)
-            .unwrap_or_default();
-        let doc = dmp_document(
-            &g.primitive,
-            &g.out,
-            DocContext {
-                demos,
-                source: if skill { "skill" } else { "demo" },
-                basis: (&model.basis().centres, &model.basis().widths),
-                frame_id: self
-                    .settings
-                    .load
-                    .fixed_frame
-                    .clone()
-                    .unwrap_or_else(|| "world".to_owned()),
-                band: skill.then(|| g.out.band.clone()),
-                recorded_units: self.settings.load.units,
-                scaling,
-            },
-        )
-        .map_err(|e| e.to_string())?;
-        serde_json::to_string(&doc).map_err(|e| e.to_string())
     }
 
     /// Files dropped on the window (paths natively, bytes in the browser)
@@ -447,6 +379,14 @@ impl eframe::App for DmpApp {
             return;
         }
         let played = self.play(&ctx);
+        self.pin_pending();
+        // The pinned sets follow the model, k and the target (computed only
+        // when one of them changed).
+        self.view.pins.refresh(
+            self.session.model().zip(self.session.model_version()),
+            self.settings.k,
+            self.session.generalise_spec(),
+        );
         let before = self.settings.clone();
         let commands = self.panels_ui(ui, left_out);
         self.after_play(played);

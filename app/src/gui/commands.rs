@@ -44,6 +44,14 @@ pub enum Export {
     TableMarkdown,
     /// The DMP run at the new target, as `docs/export.md`'s JSON.
     Dmp,
+    /// The figure of the pinned sets' regenerations, SVG.
+    FigureSvg,
+    /// The same figure as PNG (natively).
+    FigurePng,
+    /// The pinned sets' comparison as CSV.
+    CompareCsv,
+    /// The pinned sets' comparison as Markdown.
+    CompareMarkdown,
 }
 
 /// A heat map: J, or a quantity of the landscape's table.

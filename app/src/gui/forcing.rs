@@ -29,6 +29,18 @@ pub struct ForcingInput<'a> {
     pub flagged: &'a [usize],
     /// The demo highlighted (hovered elsewhere).
     pub hovered: Option<usize>,
+    /// The pinned sets: the selected demo's term at each.
+    pub pins: &'a [ForcingPin<'a>],
+}
+
+/// A pinned set's standardised forcing term of the selected demo.
+pub struct ForcingPin<'a> {
+    /// Its name.
+    pub name: &'a str,
+    /// Its colour.
+    pub colour: Color32,
+    /// The term on the grid.
+    pub f: &'a [[f64; 3]],
 }
 
 fn series(values: impl ExactSizeIterator<Item = f64>) -> PlotPoints<'static> {
@@ -91,6 +103,13 @@ pub fn show(ui: &mut egui::Ui, input: &ForcingInput<'_>) -> Option<usize> {
                         line = line.style(LineStyle::dashed_dense());
                     }
                     plot.line(line);
+                }
+                for pin in input.pins {
+                    plot.line(
+                        Line::new(pin.name, series(pin.f.iter().map(|p| p[axis])))
+                            .color(pin.colour)
+                            .width(2.0),
+                    );
                 }
             });
         if let Some(id) = response.hovered_plot_item {

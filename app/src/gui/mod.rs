@@ -19,6 +19,7 @@ mod forcing;
 mod frame_log;
 mod heatmap;
 mod panels;
+mod pins;
 mod playback;
 mod plots;
 mod target_plots;
@@ -33,13 +34,15 @@ mod view_state;
 
 pub use app::DmpApp;
 pub use commands::{Command, Export, Map};
+pub use pins::{Pin, Pins};
 #[cfg(feature = "testing")]
 pub use test_hooks::{SharedHooks, TestHooks};
 pub use view_state::{RlChoices, ViewState};
 
-/// Opens the app window on `files` (the bundled sample when empty).
+/// Opens the app window on `files` (the bundled sample when empty), with
+/// the gain sets `pins` names pinned once they are known.
 #[cfg(not(target_arch = "wasm32"))]
-pub fn run(files: Vec<std::path::PathBuf>) -> anyhow::Result<()> {
+pub fn run(files: Vec<std::path::PathBuf>, pins: Option<String>) -> anyhow::Result<()> {
     use eframe::egui;
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -53,7 +56,7 @@ pub fn run(files: Vec<std::path::PathBuf>) -> anyhow::Result<()> {
         Box::new(move |cc| {
             let ctx = cc.egui_ctx.clone();
             let runner = crate::session::Runner::background(move || ctx.request_repaint());
-            Ok(Box::new(DmpApp::new(cc, files, runner)))
+            Ok(Box::new(DmpApp::new(cc, files, runner).with_pins(pins)))
         }),
     )
     .map_err(|e| anyhow::anyhow!("cannot open the app window: {e}"))

@@ -26,10 +26,29 @@ const MAX_POINTS: usize = 300;
 /// factor from unit time to seconds.
 type Row<'a> = (&'a str, &'a [Vec3], &'a [Vec3], f64);
 
+/// A pinned gain set in the plots: its name, colour and regeneration of
+/// the plotted demo.
+#[derive(Clone, Copy)]
+pub struct PlotPin<'a> {
+    /// Its name.
+    pub name: &'a str,
+    /// Its colour.
+    pub colour: Color32,
+    /// Its regeneration of the demo.
+    pub rollout: &'a Rollout,
+}
+
 /// Shows the three plots for `demo` and its `rollout`, stacked, sharing the
 /// time axis (seconds of the demonstration), with a cursor at unit time
-/// `t`. Returns the unit time under the pointer while it is over a plot.
-pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout, t: f64) -> Option<f64> {
+/// `t` and each pinned set's regeneration in its colour. Returns the unit
+/// time under the pointer while it is over a plot.
+pub fn show(
+    ui: &mut egui::Ui,
+    demo: &PreparedDemo,
+    rollout: &Rollout,
+    t: f64,
+    pins: &[PlotPin<'_>],
+) -> Option<f64> {
     let rows: [Row<'_>; 3] = [
         ("position [m]", &demo.y_raw, &rollout.y, 1.0),
         (
@@ -45,7 +64,7 @@ pub fn show(ui: &mut egui::Ui, demo: &PreparedDemo, rollout: &Rollout, t: f64) -
             1.0 / (demo.duration_s * demo.duration_s),
         ),
     ];
-    show_rows(ui, demo.duration_s, rows, t)
+    show_rows(ui, demo.duration_s, rows, t, pins)
 }
 
 /// The orientation plots of `demo` against its regenerated orientation
@@ -80,17 +99,24 @@ pub fn show_orientation(
             1.0 / (total * total),
         ),
     ];
-    Some(show_rows(ui, total, rows, t))
+    Some(show_rows(ui, total, rows, t, &[]))
 }
 
 /// Three stacked plots sharing the time axis (seconds over `duration_s`),
-/// the demo solid and the DMP dashed per axis, with a cursor at unit time
-/// `t`; returns the unit time under the pointer.
-fn show_rows(ui: &mut egui::Ui, duration_s: f64, rows: [Row<'_>; 3], t: f64) -> Option<f64> {
+/// the demo solid and the DMP dashed per axis, the pins' regenerations
+/// (position, velocity, acceleration by row) in their colours, with a
+/// cursor at unit time `t`; returns the unit time under the pointer.
+fn show_rows(
+    ui: &mut egui::Ui,
+    duration_s: f64,
+    rows: [Row<'_>; 3],
+    t: f64,
+    pins: &[PlotPin<'_>],
+) -> Option<f64> {
     let height = ((ui.available_height() - 12.0) / 3.0).max(60.0);
     let group = ui.scope_id().with("time plots");
     let mut hovered = None;
-    for (label, target, regen, scale) in rows {
+    for (row, (label, target, regen, scale)) in rows.into_iter().enumerate() {
         let n = target.len().max(2);
         let t_of = |k: usize| duration_s * k as f64 / (n - 1) as f64;
         let response = Plot::new(label)
@@ -122,6 +148,18 @@ fn show_rows(ui: &mut egui::Ui, duration_s: f64, rows: [Row<'_>; 3], t: f64) -> 
                             .color(*colour)
                             .style(LineStyle::dashed_loose()),
                     );
+                    for pin in pins {
+                        let values = match row {
+                            0 => &pin.rollout.y,
+                            1 => &pin.rollout.v,
+                            _ => &pin.rollout.a,
+                        };
+                        plot.line(
+                            Line::new(pin.name, series(values))
+                                .color(pin.colour)
+                                .width(1.5),
+                        );
+                    }
                 }
                 plot.pointer_coordinate()
             });

@@ -32,6 +32,16 @@ pub struct OwnRun<'a> {
     pub duration_s: f64,
 }
 
+/// A pinned set's run at the same target.
+pub struct PinRun<'a> {
+    /// Its name.
+    pub name: &'a str,
+    /// Its colour.
+    pub colour: Color32,
+    /// The run.
+    pub run: &'a Generalised,
+}
+
 fn series(
     values: &[Vec3],
     axis: usize,
@@ -50,7 +60,13 @@ fn series(
 
 /// Shows the three plots; `t` is the time cursor in unit time. Returns the
 /// unit time under the pointer while it is over a plot.
-pub fn show(ui: &mut egui::Ui, g: &TargetView, own: Option<OwnRun<'_>>, t: f64) -> Option<f64> {
+pub fn show(
+    ui: &mut egui::Ui,
+    g: &TargetView,
+    own: Option<OwnRun<'_>>,
+    t: f64,
+    pins: &[PinRun<'_>],
+) -> Option<f64> {
     let o = &g.out;
     let tau = o.duration_s;
     let height = ((ui.available_height() - 12.0) / 3.0).max(60.0);
@@ -84,6 +100,10 @@ pub fn show(ui: &mut egui::Ui, g: &TargetView, own: Option<OwnRun<'_>>, t: f64) 
                     }
                     if let Some(own) = &own {
                         own_run_line(plot, own, row, ax, name, *colour);
+                    }
+                    for pin in pins {
+                        let from = if row == 0 { pin.run.start[ax] } else { 0.0 };
+                        new_run_line(plot, pin.run, row, ax, pin.name, pin.colour, from);
                     }
                 }
                 plot.pointer_coordinate()

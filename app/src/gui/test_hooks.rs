@@ -16,6 +16,8 @@ pub struct TestHooks {
     pub train: Vec<(usize, u64)>,
     /// Grid sizes asked for (points per axis), not yet applied.
     pub grid: Vec<usize>,
+    /// Gain sets to pin (Table I names or `DM:KM`), not yet pinned.
+    pub pin: Vec<String>,
     /// The app's state as JSON, written every frame.
     pub state: String,
     /// The parts of the window `web/tests/frame_probe.mjs` leaves out and
@@ -29,6 +31,7 @@ impl Default for TestHooks {
         Self {
             train: Vec::new(),
             grid: Vec::new(),
+            pin: Vec::new(),
             state: "{}".to_owned(),
             hide: 0,
         }

@@ -27,10 +27,17 @@ impl DmpApp {
         };
         // The hook's own time is not the app's.
         let spent = Instant::now();
-        let (train, grid) = {
+        let (train, grid, pins) = {
             let mut h = hooks.borrow_mut();
-            (std::mem::take(&mut h.train), std::mem::take(&mut h.grid))
+            (
+                std::mem::take(&mut h.train),
+                std::mem::take(&mut h.grid),
+                std::mem::take(&mut h.pin),
+            )
         };
+        for text in pins {
+            self.pin_by_text(&text);
+        }
         for (steps, seed) in train {
             self.start_test_training(steps, seed, ctx);
         }
@@ -41,6 +48,24 @@ impl DmpApp {
         let state = self.test_state(ctx).to_string();
         hooks.borrow_mut().state = state;
         self.frame_watch.exclude(spent.elapsed());
+    }
+
+    /// Per pin, the paths the 3D view drew for it last frame (0 when
+    /// hidden).
+    fn pin_paths_drawn(&self) -> Vec<usize> {
+        let mut drawn = self.view.view3d.pin_paths.iter().copied();
+        self.view
+            .pins
+            .list()
+            .iter()
+            .map(|p| {
+                if p.shown {
+                    drawn.next().unwrap_or(0)
+                } else {
+                    0
+                }
+            })
+            .collect()
     }
 
     /// Starts training as the RL panel's Train button with the extracted
@@ -108,6 +133,15 @@ impl DmpApp {
             "reading": reading_json(session),
             "wasm_memory_bytes": wasm_memory_bytes(),
             "page_frame_work_ms": self.frame_watch.work_ms,
+            "pins": self.view.pins.list().iter().zip(self.pin_paths_drawn()).map(|(p, paths)| serde_json::json!({
+                "name": p.name,
+                "dm": p.dm,
+                "km": p.km,
+                "colour": p.colour,
+                "shown": p.shown,
+                "paths_3d": paths,
+            })).collect::<Vec<_>>(),
+            "plot_pin_lines": self.view.plot_pin_lines,
             "playback": {
                 "playing": self.view.playback.playing,
                 "t": self.view.t,

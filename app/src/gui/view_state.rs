@@ -95,6 +95,16 @@ pub struct ViewState {
     /// Where the gain presets' buttons were drawn last frame, by name
     /// (what the browser tests click).
     pub preset_buttons: std::collections::BTreeMap<&'static str, egui::Rect>,
+    /// The pinned gain sets and what they show (issue 45).
+    pub pins: super::pins::Pins,
+    /// The Compare section's typed gains (`DM:KM`) and its last error.
+    pub pin_text: String,
+    /// Why the last pin was refused.
+    pub pin_error: Option<String>,
+    /// Table I's panel shows the pinned sets' comparison.
+    pub compare_table: bool,
+    /// The pinned sets the Demo tab's plots drew last frame (tests).
+    pub plot_pin_lines: usize,
     /// The model the views were set up for.
     model_seen: Option<u64>,
 }
@@ -123,6 +133,11 @@ impl ViewState {
             exclude_text: String::new(),
             segment: SegmentSettings::default(),
             preset_buttons: std::collections::BTreeMap::new(),
+            pins: super::pins::Pins::default(),
+            pin_text: String::new(),
+            pin_error: None,
+            compare_table: false,
+            plot_pin_lines: 0,
             model_seen: None,
         }
     }

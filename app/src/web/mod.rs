@@ -46,7 +46,7 @@ fn wake_app() {
 }
 
 /// Installs `window.dmpscope_state()`, `dmpscope_train()`,
-/// `dmpscope_grid()` and `dmpscope_hide()` over `hooks` (the app reads the
+/// `dmpscope_grid()`, `dmpscope_pin()` and `dmpscope_hide()` over `hooks` (the app reads the
 /// requests and writes the state every frame).
 #[cfg(feature = "testing")]
 fn install_hooks(hooks: &crate::gui::SharedHooks) {
@@ -68,9 +68,15 @@ fn install_hooks(hooks: &crate::gui::SharedHooks) {
         h.borrow_mut().grid.push(n as usize);
         wake_app();
     });
+    let h = hooks.clone();
+    let pin = Closure::<dyn Fn(String)>::new(move |text: String| {
+        h.borrow_mut().pin.push(text);
+        wake_app();
+    });
     if let Some(window) = web_sys::window() {
         let _ = js_sys::Reflect::set(&window, &"dmpscope_hide".into(), &hide.into_js_value());
         let _ = js_sys::Reflect::set(&window, &"dmpscope_grid".into(), &grid.into_js_value());
+        let _ = js_sys::Reflect::set(&window, &"dmpscope_pin".into(), &pin.into_js_value());
         let _ = js_sys::Reflect::set(&window, &"dmpscope_state".into(), &state.into_js_value());
         let _ = js_sys::Reflect::set(&window, &"dmpscope_train".into(), &train.into_js_value());
     }

@@ -1,9 +1,12 @@
 //! Report: Table I and the extraction as one serde type ([`summary`]), the
-//! paper's presets ([`presets`]), and their renderings for terminals,
-//! spreadsheets and documents ([`table_text`], [`text`]).
+//! paper's presets ([`presets`]), gain sets compared side by side
+//! ([`compare`]), and their renderings for terminals, spreadsheets and
+//! documents ([`table_text`], [`text`]).
 //!
-//! May use: extract, landscape, prepare, load.
+//! May use: generalise, extract, landscape, prepare, load.
 
+pub mod compare;
+pub mod compare_text;
 pub mod presets;
 pub mod summary;
 pub mod table;

@@ -13,7 +13,7 @@ use eframe::egui::{self, Color32};
 use super::super::commands::Map;
 use super::super::heatmap::{self, MapInput, Marker};
 use super::super::view_state::ViewState;
-use super::super::view3d::{Handle, HandleMove, TargetOverlay};
+use super::super::view3d::{Handle, HandleMove, Layers, TargetOverlay};
 use super::PanelCtx;
 use crate::session::{Command as SessionCommand, Session, Settings, Shown, Status};
 
@@ -46,14 +46,19 @@ pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             turns: g.out.orientation.as_ref().map(|o| o.q.as_slice()),
             t: view.t_target,
         });
+        let pins = view.pins.scene();
+        let layers = Layers {
+            learned,
+            overlay: overlay.as_ref(),
+            pins: &pins,
+        };
         let moved = view.view3d.show(
             ui,
             model,
             (session.paths(), session.turns()),
             highlighted,
             view.t,
-            learned,
-            overlay.as_ref(),
+            layers,
         );
         if let (Some(m), Some(spec)) = (moved, session.generalise_spec()) {
             let mut spec = *spec;
@@ -114,7 +119,13 @@ fn maps(
     height: f32,
 ) {
     let grid = shown.grid();
-    let markers = markers(session);
+    let mut markers = markers(session);
+    markers.extend(view.pins.list().iter().map(|p| Marker {
+        label: p.name.clone(),
+        dm: p.dm,
+        km: p.km,
+        colour: Color32::from_rgb(p.colour[0], p.colour[1], p.colour[2]),
+    }));
     let cloud: Vec<(f64, f64)> = session
         .diagnostics()
         .map(|d| d.cloud.iter().map(|o| (o.dm, o.km)).collect())

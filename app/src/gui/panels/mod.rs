@@ -7,6 +7,8 @@
 
 mod allowed;
 mod central;
+mod compare;
+mod compare_table;
 mod context;
 mod demos;
 mod diagnostics;

@@ -84,12 +84,25 @@ fn demo_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>, model: &Model) {
             ui.selectable_value(&mut view.orientation_plots, true, "orientation");
         });
     }
+    let selected = view.selected;
+    let pins: Vec<plots::PlotPin<'_>> = view
+        .pins
+        .shown_regen()
+        .filter_map(|(p, regen)| {
+            Some(plots::PlotPin {
+                name: &p.name,
+                colour: egui::Color32::from_rgb(p.colour[0], p.colour[1], p.colour[2]),
+                rollout: regen.get(selected)?,
+            })
+        })
+        .collect();
+    view.plot_pin_lines = pins.len();
     let hovered = match (turn, view.orientation_plots) {
         (Some(turn), true) => plots::show_orientation(ui, demo, turn, view.t).flatten(),
         _ => session
             .paths()
             .get(view.selected)
-            .and_then(|rollout| plots::show(ui, demo, rollout, view.t)),
+            .and_then(|rollout| plots::show(ui, demo, rollout, view.t, &pins)),
     };
     if let Some(t) = hovered {
         view.t = t;
@@ -128,7 +141,17 @@ fn generalised_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             playback::controls_ui(ui, &mut cx.view.playback, d);
         });
     }
-    if let Some(t) = target_plots::show(ui, g, own, cx.view.t_target) {
+    let pins: Vec<target_plots::PinRun<'_>> = cx
+        .view
+        .pins
+        .shown_targets()
+        .map(|(p, run)| target_plots::PinRun {
+            name: &p.name,
+            colour: egui::Color32::from_rgb(p.colour[0], p.colour[1], p.colour[2]),
+            run,
+        })
+        .collect();
+    if let Some(t) = target_plots::show(ui, g, own, cx.view.t_target, &pins) {
         cx.view.t_target = t;
     }
 }
@@ -150,13 +173,6 @@ fn forcing_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         .point()
         .map_or((f64::NAN, f64::NAN), |p| (p.dm, p.km));
     ui.weak(format!("at the operating point D/M {dm:.3}, K/M {km:.3}"));
-    let input = forcing::ForcingInput {
-        terms,
-        names: &names,
-        shares: session.point_shares(),
-        flagged: &flagged,
-        hovered: cx.view.hovered,
-    };
     // The flagged demos, each excluded in one click.
     if !flagged.is_empty() {
         ui.horizontal_wrapped(|ui| {
@@ -167,6 +183,31 @@ fn forcing_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             }
         });
     }
+    let selected = cx.view.selected;
+    let pins: Vec<forcing::ForcingPin<'_>> = cx
+        .view
+        .pins
+        .shown_forcing(selected)
+        .map(|(p, f)| forcing::ForcingPin {
+            name: &p.name,
+            colour: egui::Color32::from_rgb(p.colour[0], p.colour[1], p.colour[2]),
+            f,
+        })
+        .collect();
+    if !pins.is_empty() {
+        ui.weak(format!(
+            "pinned sets: {}'s term at each, in the set's colour",
+            names.get(selected).map_or("", String::as_str)
+        ));
+    }
+    let input = forcing::ForcingInput {
+        terms,
+        names: &names,
+        shares: session.point_shares(),
+        flagged: &flagged,
+        hovered: cx.view.hovered,
+        pins: &pins,
+    };
     if let Some(i) = forcing::show(ui, &input) {
         cx.view.hovering = Some(i);
     }

@@ -1,9 +1,9 @@
-//! The side panel: the demos and messages, the gains, the diagnostics, RL,
-//! and the Loading and Settings sections.
+//! The side panel: the demos and messages, the gains, the pinned gain sets,
+//! the diagnostics, RL, and the Loading and Settings sections.
 
 use eframe::egui;
 
-use super::{PanelCtx, demos, diagnostics, gains, loading, recording, rl, settings};
+use super::{PanelCtx, compare, demos, diagnostics, gains, loading, recording, rl, settings};
 
 /// The side panel.
 pub fn side_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
@@ -12,6 +12,16 @@ pub fn side_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     ui.collapsing("Recording", |ui| recording::recording_ui(ui, cx));
     ui.separator();
     gains::gains_ui(ui, cx);
+    ui.separator();
+    let pinned = cx.view.pins.list().len();
+    let title = if pinned == 0 {
+        "Compare gain sets".to_owned()
+    } else {
+        format!("Compare gain sets ({pinned} pinned)")
+    };
+    egui::CollapsingHeader::new(title)
+        .id_salt("compare gain sets")
+        .show(ui, |ui| compare::compare_ui(ui, cx));
     ui.separator();
     egui::CollapsingHeader::new("Diagnostics")
         .default_open(true)

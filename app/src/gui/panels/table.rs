@@ -21,9 +21,18 @@ pub fn table_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let Some(model) = cx.session.model() else {
         return;
     };
+    if cx.view.compare_table {
+        super::compare_table::compare_table_ui(ui, cx);
+        return;
+    }
     let rows = cx.session.table_rows();
     ui.horizontal(|ui| {
-        ui.label(egui::RichText::new("Table I").strong());
+        if cx.view.pins.is_empty() {
+            ui.label(egui::RichText::new("Table I").strong());
+        } else {
+            ui.selectable_value(&mut cx.view.compare_table, false, "Table I");
+            ui.selectable_value(&mut cx.view.compare_table, true, "Pinned sets");
+        }
         if ui.button("Copy Markdown").clicked()
             && let Some(report) = cx.session.report()
         {

@@ -88,6 +88,7 @@ pub fn top_bar_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
 /// The Export menu's items, each asking for its export when clicked.
 fn export_menu(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let session = cx.session;
+    let pinned = !cx.view.pins.is_empty();
     let mut item = |ui: &mut egui::Ui, enabled: bool, label: &str, export: Export| {
         if ui.add_enabled(enabled, egui::Button::new(label)).clicked() {
             cx.push(Command::Export(export));
@@ -103,6 +104,26 @@ fn export_menu(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     item(ui, model, "Gains and Table I (JSON)", Export::ReportJson);
     item(ui, model, "Table I (CSV)", Export::TableCsv);
     item(ui, model, "Table I (Markdown)", Export::TableMarkdown);
+    item(
+        ui,
+        model,
+        "Figure of the pinned sets (SVG)",
+        Export::FigureSvg,
+    );
+    #[cfg(not(target_arch = "wasm32"))]
+    item(
+        ui,
+        model,
+        "Figure of the pinned sets (PNG)",
+        Export::FigurePng,
+    );
+    item(ui, pinned, "Pinned sets compared (CSV)", Export::CompareCsv);
+    item(
+        ui,
+        pinned,
+        "Pinned sets compared (Markdown)",
+        Export::CompareMarkdown,
+    );
     let run = session.generalised().is_some_and(|g| g.is_ok());
     item(
         ui,

@@ -4,7 +4,9 @@
 //! Without the wgpu renderer (a test harness without one) it says so.
 
 mod camera;
+mod compose;
 mod gpu;
+mod overlays;
 mod scene;
 
 use dmpscope_core::geom;
@@ -17,6 +19,7 @@ use eframe::egui_wgpu;
 use glam::Vec2;
 
 use camera::OrbitCamera;
+pub use scene::ScenePin;
 use scene::{Frame, SceneTarget};
 
 /// A run at a new target drawn over the demos, its start and goal draggable.
@@ -33,6 +36,20 @@ pub struct TargetOverlay<'a> {
     pub turns: Option<&'a [[f64; 4]]>,
     /// Its time cursor, unit time.
     pub t: f64,
+}
+
+/// What the view draws over the demos and their regenerations at the
+/// operating point: the learned path, the run at a new target and the
+/// pinned gain sets.
+#[derive(Clone, Copy, Default)]
+pub struct Layers<'a> {
+    /// A path an RL agent learned: (demo index, positions in demo
+    /// coordinates).
+    pub learned: Option<(usize, &'a [geom::Vec3])>,
+    /// The run at a new target, with its handles.
+    pub overlay: Option<&'a TargetOverlay<'a>>,
+    /// The pinned gain sets, with their names for the legend.
+    pub pins: &'a [(String, ScenePin<'a>)],
 }
 
 /// A handle of the overlay.
@@ -95,6 +112,8 @@ pub struct View3d {
     /// Where the overlay's start and goal were drawn last frame (screen
     /// points), for tests and tools.
     handles_on_screen: Option<[egui::Pos2; 2]>,
+    /// Per pinned set, the paths drawn last frame (tests and tools).
+    pub pin_paths: Vec<usize>,
 }
 
 impl View3d {
@@ -119,6 +138,7 @@ impl View3d {
             show_triads: true,
             dragging: None,
             handles_on_screen: None,
+            pin_paths: Vec::new(),
             #[cfg(feature = "testing")]
             probe_off: false,
         }
@@ -185,9 +205,13 @@ impl View3d {
         regen: (&[Rollout], &[Option<OrientationRollout>]),
         selected: usize,
         t: f64,
-        learned: Option<(usize, &[geom::Vec3])>,
-        overlay: Option<&TargetOverlay<'_>>,
+        layers: Layers<'_>,
     ) -> Option<HandleMove> {
+        let Layers {
+            learned,
+            overlay,
+            pins,
+        } = layers;
         let (regen, turns) = regen;
         let size = ui.available_size().max(egui::vec2(120.0, 120.0));
         let (rect, response) = ui.allocate_exact_size(size, Sense::click_and_drag());
@@ -195,16 +219,6 @@ impl View3d {
         painter.rect_filled(rect, 4.0, Color32::from_rgb(22, 24, 30));
         #[cfg(feature = "testing")]
         if self.probe_off {
-            return None;
-        }
-        if !self.gpu {
-            painter.text(
-                rect.center(),
-                Align2::CENTER_CENTER,
-                "The 3D view needs the wgpu renderer.",
-                FontId::proportional(14.0),
-                Color32::GRAY,
-            );
             return None;
         }
         let frame = Frame::of(model.demos())?;
@@ -217,10 +231,23 @@ impl View3d {
             t,
             learned,
             overlay,
+            pins,
         };
         let ppp = ui.ctx().pixels_per_point();
         let view_proj = self.scene_ui(&painter, rect, ppp, &frame, &camera, &drawn);
+        if !self.gpu {
+            // The scene is built (tests read what it holds) but not drawn.
+            painter.text(
+                rect.center(),
+                Align2::CENTER_CENTER,
+                "The 3D view needs the wgpu renderer.",
+                FontId::proportional(14.0),
+                Color32::GRAY,
+            );
+            return moved;
+        }
         view3d_labels_ui(&painter, rect, &frame, view_proj, &drawn);
+        pins_legend_ui(&painter, rect, pins);
         moved
     }
 
@@ -301,6 +328,7 @@ impl View3d {
         } else {
             Vec::new()
         };
+        let scene_pins: Vec<ScenePin<'_>> = drawn.pins.iter().map(|(_, p)| *p).collect();
         let input = scene::SceneInput {
             demos: drawn.model.demos(),
             regen: if self.show_regen { drawn.regen } else { &[] },
@@ -325,8 +353,11 @@ impl View3d {
             demo_turns: &demo_turns,
             regen_turns: &regen_turns,
             triads: self.show_triads,
+            pins: &scene_pins,
         };
-        let segments = Arc::new(scene::build(frame, &input));
+        let built = compose::build(frame, &input);
+        self.pin_paths = built.pin_paths;
+        let segments = Arc::new(built.segments);
         let view_proj = camera.view_proj(aspect);
         let to_screen = |p: glam::Vec3| project(view_proj, rect, p);
         self.handles_on_screen = drawn.overlay.and_then(|ov| {
@@ -338,10 +369,12 @@ impl View3d {
             viewport: [rect.width() * ppp, rect.height() * ppp],
             pad: [0.0; 2],
         };
-        painter.add(egui_wgpu::Callback::new_paint_callback(
-            rect,
-            gpu::DrawLines { uniforms, segments },
-        ));
+        if self.gpu {
+            painter.add(egui_wgpu::Callback::new_paint_callback(
+                rect,
+                gpu::DrawLines { uniforms, segments },
+            ));
+        }
         view_proj
     }
 
@@ -417,6 +450,30 @@ struct Drawn<'a> {
     t: f64,
     learned: Option<(usize, &'a [geom::Vec3])>,
     overlay: Option<&'a TargetOverlay<'a>>,
+    pins: &'a [(String, ScenePin<'a>)],
+}
+
+/// The pinned sets' names in their colours, top right.
+fn pins_legend_ui(painter: &egui::Painter, rect: egui::Rect, pins: &[(String, ScenePin<'_>)]) {
+    for (k, (name, pin)) in pins.iter().enumerate() {
+        let [r, g, b] = pin.colour;
+        let y = rect.top() + 8.0 + 15.0 * k as f32;
+        let right = rect.right() - 8.0;
+        painter.line_segment(
+            [
+                egui::pos2(right - 18.0, y + 6.0),
+                egui::pos2(right, y + 6.0),
+            ],
+            egui::Stroke::new(2.0, Color32::from_rgb(r, g, b)),
+        );
+        painter.text(
+            egui::pos2(right - 24.0, y),
+            Align2::RIGHT_TOP,
+            name,
+            FontId::proportional(11.0),
+            Color32::from_rgb(r, g, b),
+        );
+    }
 }
 
 /// The axis names and the hints over the picture.

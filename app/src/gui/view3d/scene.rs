@@ -34,7 +34,7 @@ const WIDTH: f32 = 2.0;
 const WIDTH_SELECTED: f32 = 3.5;
 
 /// The dark rims of the markers and handles.
-const DARK: [f32; 4] = [0.08, 0.08, 0.1, 1.0];
+pub(super) const DARK: [f32; 4] = [0.08, 0.08, 0.1, 1.0];
 
 /// The demo paths and their regenerations, in world coordinates (metres).
 pub struct SceneInput<'a> {
@@ -64,6 +64,28 @@ pub struct SceneInput<'a> {
     pub regen_turns: &'a [Option<&'a [QuatXyzw]>],
     /// Draw orientation triads along the paths.
     pub triads: bool,
+    /// Pinned gain sets: each shown demo regenerated at each, and each
+    /// one's run at the new target.
+    pub pins: &'a [ScenePin<'a>],
+}
+
+/// A pinned gain set in the scene.
+#[derive(Clone, Copy)]
+pub struct ScenePin<'a> {
+    /// Its colour (sRGB).
+    pub colour: [u8; 3],
+    /// Its regeneration of every demo (relative to each demo's start).
+    pub regen: &'a [Rollout],
+    /// Its run at the new target (absolute), if any.
+    pub target: Option<&'a [geom::Vec3]>,
+}
+
+/// The scene's segments, and how many paths each pin drew.
+pub struct Built {
+    /// The segments in painter's order.
+    pub segments: Vec<Segment>,
+    /// Per pin, the paths drawn (its regenerations and its target run).
+    pub pin_paths: Vec<usize>,
 }
 
 /// A generalised run in the scene (absolute positions).
@@ -156,7 +178,7 @@ impl Frame {
     }
 }
 
-fn to_vec(p: geom::Vec3, origin: geom::Vec3) -> Vec3 {
+pub(super) fn to_vec(p: geom::Vec3, origin: geom::Vec3) -> Vec3 {
     Vec3::new(
         (p[0] - origin[0]) as f32,
         (p[1] - origin[1]) as f32,
@@ -164,7 +186,7 @@ fn to_vec(p: geom::Vec3, origin: geom::Vec3) -> Vec3 {
     )
 }
 
-fn rgba(c: [u8; 3], alpha: f32) -> [f32; 4] {
+pub(super) fn rgba(c: [u8; 3], alpha: f32) -> [f32; 4] {
     [
         f32::from(c[0]) / 255.0,
         f32::from(c[1]) / 255.0,
@@ -173,7 +195,7 @@ fn rgba(c: [u8; 3], alpha: f32) -> [f32; 4] {
     ]
 }
 
-fn lighter(c: [u8; 3], amount: f32) -> [u8; 3] {
+pub(super) fn lighter(c: [u8; 3], amount: f32) -> [u8; 3] {
     c.map(|v| (f32::from(v) + (255.0 - f32::from(v)) * amount).round() as u8)
 }
 
@@ -185,7 +207,7 @@ pub struct SegmentList {
 }
 
 impl SegmentList {
-    fn line(&mut self, a: Vec3, b: Vec3, colour: [f32; 4], width: f32) {
+    pub(super) fn line(&mut self, a: Vec3, b: Vec3, colour: [f32; 4], width: f32) {
         self.segments.push(Segment {
             p0: a.into(),
             p1: b.into(),
@@ -194,12 +216,12 @@ impl SegmentList {
         });
     }
 
-    fn dot(&mut self, p: Vec3, colour: [f32; 4], diameter: f32) {
+    pub(super) fn dot(&mut self, p: Vec3, colour: [f32; 4], diameter: f32) {
         self.line(p, p, colour, diameter);
     }
 
     /// A polyline through `points` (decimated), dashed when `dash > 0`.
-    fn path(&mut self, points: &[Vec3], colour: [f32; 4], width: f32, dash: f32) {
+    pub(super) fn path(&mut self, points: &[Vec3], colour: [f32; 4], width: f32, dash: f32) {
         let stride = points.len().div_ceil(MAX_PATH_POINTS).max(1);
         let mut picked: Vec<Vec3> = points.iter().copied().step_by(stride).collect();
         if let Some(last) = points.last()
@@ -226,7 +248,7 @@ const TRIAD: [[f32; 3]; 3] = [[0.95, 0.3, 0.25], [0.3, 0.85, 0.35], [0.3, 0.55, 
 
 impl SegmentList {
     /// The body axes of orientation `q` at `p`, `length` long.
-    fn triad(&mut self, p: Vec3, q: QuatXyzw, length: f32, width: f32, alpha: f32) {
+    pub(super) fn triad(&mut self, p: Vec3, q: QuatXyzw, length: f32, width: f32, alpha: f32) {
         let q = glam::Quat::from_xyzw(q[0] as f32, q[1] as f32, q[2] as f32, q[3] as f32);
         if !q.is_finite() || q.length_squared() < 1e-6 {
             return;
@@ -239,7 +261,7 @@ impl SegmentList {
 
     /// Triads along `path` (one orientation per point of the same grid),
     /// one every `spacing` of arc length.
-    fn triads_along(
+    pub(super) fn triads_along(
         &mut self,
         path: &[Vec3],
         turns: &[QuatXyzw],
@@ -262,7 +284,7 @@ impl SegmentList {
 }
 
 /// Interpolates a path on the unit-time grid at `t` in 0..=1.
-fn at_time(points: &[Vec3], t: f64) -> Option<Vec3> {
+pub(super) fn at_time(points: &[Vec3], t: f64) -> Option<Vec3> {
     let last = points.len().checked_sub(1)?;
     let x = t.clamp(0.0, 1.0) * last as f64;
     let i = (x.floor() as usize).min(last);
@@ -271,117 +293,21 @@ fn at_time(points: &[Vec3], t: f64) -> Option<Vec3> {
     Some(points[i].lerp(points[j], f))
 }
 
-/// All segments of the scene in `frame`.
-pub fn build(frame: &Frame, input: &SceneInput<'_>) -> Vec<Segment> {
-    let mut out = SegmentList::default();
-    ground_and_axes(&mut out, frame, input.pixels_per_point);
-
-    // Demos, then regenerations on top, then markers.
-    let demo_paths: Vec<Vec<Vec3>> = input
-        .demos
-        .iter()
-        .map(|d| d.y_raw.iter().map(|p| frame.local(d.p0 + p)).collect())
-        .collect();
-    let regen_paths: Vec<Vec<Vec3>> = input
-        .demos
-        .iter()
-        .zip(input.regen)
-        .map(|(d, r)| r.y.iter().map(|p| frame.local(d.p0 + p)).collect())
-        .collect();
-    demo_paths_and_markers(&mut out, frame, input, &demo_paths, &regen_paths);
-    if input.triads {
-        demo_triads(&mut out, frame, input, &demo_paths, &regen_paths);
-    }
-
-    // A run at a new target: white, its band faint, its handles on top.
-    if let Some(g) = &input.generalised {
-        generalised_run(&mut out, frame, g, input);
-    }
-
-    // The time cursor on the selected demo and its regeneration.
-    let sel = input.selected;
-    if input.shown(sel) {
-        let ppp = input.pixels_per_point;
-        let c = rgba(input.colour_of(sel), 1.0);
-        for path in [demo_paths.get(sel), regen_paths.get(sel)]
-            .into_iter()
-            .flatten()
-        {
-            if let Some(p) = at_time(path, input.t) {
-                out.dot(p, [1.0, 1.0, 1.0, 1.0], 12.0 * ppp);
-                out.dot(p, c, 8.0 * ppp);
-            }
-        }
-        // The pose at the cursor: a triad on the demo and its regeneration.
-        let cursor_turns = [
-            (demo_paths.get(sel), input.demo_turns.get(sel)),
-            (regen_paths.get(sel), input.regen_turns.get(sel)),
-        ];
-        for (path, turns) in cursor_turns.into_iter().filter(|_| input.triads) {
-            if let (Some(path), Some(Some(turns))) = (path, turns)
-                && let (Some(p), Some(q)) = (at_time(path, input.t), nearest(turns, input.t))
-            {
-                out.triad(p, q, 0.45 * frame.grid_step(), 3.0 * ppp, 1.0);
-            }
-        }
-    }
-    out.segments
-}
-
 /// The orientation nearest unit time `t` on a grid.
-fn nearest(turns: &[QuatXyzw], t: f64) -> Option<QuatXyzw> {
+pub(super) fn nearest(turns: &[QuatXyzw], t: f64) -> Option<QuatXyzw> {
     let last = turns.len().checked_sub(1)?;
     let k = (t.clamp(0.0, 1.0) * last as f64).round() as usize;
     turns.get(k.min(last)).copied()
 }
 
-/// Triads along every shown demo (solid) and its regeneration (lighter),
-/// one every 0.8 grid steps of path, and larger ones at the start and goal
-/// orientations.
-fn demo_triads(
-    out: &mut SegmentList,
-    frame: &Frame,
-    input: &SceneInput<'_>,
-    demo_paths: &[Vec<Vec3>],
-    regen_paths: &[Vec<Vec3>],
-) {
-    let ppp = input.pixels_per_point;
-    let step = frame.grid_step();
-    for (i, path) in demo_paths
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| input.shown(*i))
-    {
-        let Some(Some(turns)) = input.demo_turns.get(i) else {
-            continue;
-        };
-        out.triads_along(path, turns, 0.8 * step, 0.22 * step, 1.5 * ppp, 0.9);
-        if let (Some(p0), Some(q0)) = (path.first(), turns.first()) {
-            out.triad(*p0, *q0, 0.4 * step, 2.5 * ppp, 1.0);
-        }
-        if let (Some(pg), Some(qg)) = (path.last(), turns.last()) {
-            out.triad(*pg, *qg, 0.4 * step, 2.5 * ppp, 1.0);
-        }
-    }
-    for (i, path) in regen_paths
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| input.shown(*i))
-    {
-        if let Some(Some(turns)) = input.regen_turns.get(i) {
-            out.triads_along(path, turns, 0.8 * step, 0.22 * step, 1.0 * ppp, 0.5);
-        }
-    }
-}
-
 impl SceneInput<'_> {
     /// Whether demo `i` is shown.
-    fn shown(&self, i: usize) -> bool {
+    pub(super) fn shown(&self, i: usize) -> bool {
         self.visible.get(i).copied().unwrap_or(true)
     }
 
     /// The colour of demo `i`.
-    fn colour_of(&self, i: usize) -> [u8; 3] {
+    pub(super) fn colour_of(&self, i: usize) -> [u8; 3] {
         self.colours
             .get(i % self.colours.len().max(1))
             .copied()
@@ -389,149 +315,12 @@ impl SceneInput<'_> {
     }
 
     /// The width of demo `i`'s paths in physical pixels (wider when selected).
-    fn width_of(&self, i: usize) -> f32 {
+    pub(super) fn width_of(&self, i: usize) -> f32 {
         (if i == self.selected {
             WIDTH_SELECTED
         } else {
             WIDTH
         }) * self.pixels_per_point
-    }
-}
-
-/// The ground grid and the axes, `ppp` pixels per point.
-fn ground_and_axes(out: &mut SegmentList, frame: &Frame, ppp: f32) {
-    let step = frame.grid_step();
-    let o = frame.axes_origin();
-    let b = frame.bounds;
-    let nx = ((b.max.x - o.x) / step).ceil().max(1.0) as usize;
-    let ny = ((b.max.y - o.y) / step).ceil().max(1.0) as usize;
-    let grey = [0.55, 0.55, 0.6, 0.35];
-    for i in 0..=nx {
-        let x = o.x + i as f32 * step;
-        out.line(
-            Vec3::new(x, o.y, o.z),
-            Vec3::new(x, o.y + ny as f32 * step, o.z),
-            grey,
-            ppp,
-        );
-    }
-    for j in 0..=ny {
-        let y = o.y + j as f32 * step;
-        out.line(
-            Vec3::new(o.x, y, o.z),
-            Vec3::new(o.x + nx as f32 * step, y, o.z),
-            grey,
-            ppp,
-        );
-    }
-    for (axis, colour) in [
-        (Vec3::X, [0.9, 0.35, 0.3, 1.0]),
-        (Vec3::Y, [0.35, 0.8, 0.4, 1.0]),
-        (Vec3::Z, [0.35, 0.55, 0.95, 1.0]),
-    ] {
-        out.line(o, o + axis * step, colour, 2.5 * ppp);
-    }
-}
-
-/// The demos, their regenerations (dashed), the learned path and the start and goal markers.
-fn demo_paths_and_markers(
-    out: &mut SegmentList,
-    frame: &Frame,
-    input: &SceneInput<'_>,
-    demo_paths: &[Vec<Vec3>],
-    regen_paths: &[Vec<Vec3>],
-) {
-    let ppp = input.pixels_per_point;
-    let dash = frame.bounds.radius() / 30.0;
-    for (i, path) in demo_paths
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| input.shown(*i))
-    {
-        out.path(path, rgba(input.colour_of(i), 1.0), input.width_of(i), 0.0);
-    }
-    for (i, path) in regen_paths
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| input.shown(*i))
-    {
-        let c = lighter(input.colour_of(i), 0.45);
-        out.path(path, rgba(c, 0.95), input.width_of(i), dash);
-    }
-    if let Some((i, path)) = input.learned
-        && let Some(d) = input.demos.get(i)
-    {
-        let points: Vec<Vec3> = path.iter().map(|p| frame.local(d.p0 + p)).collect();
-        out.path(&points, [1.0, 0.84, 0.3, 1.0], 3.0 * ppp, 0.0);
-    }
-    for (i, d) in input
-        .demos
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| input.shown(*i))
-    {
-        let c = rgba(input.colour_of(i), 1.0);
-        let start = frame.local(d.p0);
-        let goal = frame.local(d.p0 + d.goal);
-        // Start: a filled disc; goal: a ring.
-        out.dot(start, DARK, 10.0 * ppp);
-        out.dot(start, c, 7.0 * ppp);
-        out.dot(goal, c, 11.0 * ppp);
-        out.dot(goal, DARK, 5.0 * ppp);
-    }
-}
-
-/// A run at a new target `g`: its path, its band, its handles and its time cursor.
-fn generalised_run(
-    out: &mut SegmentList,
-    frame: &Frame,
-    g: &SceneTarget<'_>,
-    input: &SceneInput<'_>,
-) {
-    let ppp = input.pixels_per_point;
-    let dash = frame.bounds.radius() / 30.0;
-    let local = |p: &geom::Vec3| frame.local(*p);
-    let path: Vec<Vec3> = g.path.iter().map(local).collect();
-    if g.band.len() == g.path.len() {
-        for sign in [-1.0, 1.0] {
-            let edge: Vec<Vec3> = g
-                .path
-                .iter()
-                .zip(g.band)
-                .map(|(p, b)| local(&geom::Vec3::from_fn(|a, _| p[a] + sign * b[a])))
-                .collect();
-            out.path(&edge, [1.0, 1.0, 1.0, 0.35], 1.0 * ppp, dash);
-        }
-    }
-    out.path(&path, [0.97, 0.97, 0.97, 1.0], 3.0 * ppp, 0.0);
-    if let Some(turns) = g.turns {
-        let step = frame.grid_step();
-        if input.triads {
-            out.triads_along(&path, turns, 0.5 * step, 0.22 * step, 1.5 * ppp, 0.9);
-        }
-        // The orientation the run ends at, beside its ring, always.
-        if let (Some(pg), Some(qg)) = (path.last(), turns.last()) {
-            out.triad(*pg, *qg, 0.5 * step, 3.0 * ppp, 1.0);
-        }
-        if let Some(q0) = turns.first() {
-            out.triad(frame.local(g.start), *q0, 0.5 * step, 3.0 * ppp, 1.0);
-        }
-    }
-    let handle = |i: usize| {
-        if g.active == Some(i) {
-            [1.0, 0.85, 0.3, 1.0]
-        } else {
-            [0.97, 0.97, 0.97, 1.0]
-        }
-    };
-    let (start, goal) = (frame.local(g.start), frame.local(g.goal));
-    out.dot(start, DARK, 13.0 * ppp);
-    out.dot(start, handle(0), 10.0 * ppp);
-    out.dot(goal, handle(1), 16.0 * ppp);
-    out.dot(goal, DARK, 8.0 * ppp);
-    if let Some(p) = at_time(&path, g.t) {
-        out.dot(p, [0.1, 0.1, 0.1, 1.0], 12.0 * ppp);
-        out.dot(p, [0.97, 0.97, 0.97, 1.0], 8.0 * ppp);
     }
 }
 
