@@ -4,17 +4,21 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out=fuzz/corpus/load
 mkdir -p "$out"
-cargo run -q --release -p dmpscope -- gen-sample --demos 2 --out "$out/pose2-zstd.mcap"
-cargo run -q --release -p dmpscope -- gen-sample --demos 3 --uncompressed --out "$out/pose3-plain.mcap"
-cargo run -q --release -p dmpscope -- regen "$out/pose2-zstd.mcap" --dm 10 --km 20 --out "$out/pose-in-frame-json.mcap"
-cargo run -q --release -p dmpscope -- gen-sample --demos 1 --seed 7 --out "$out/pose1.mcap"
+# DMPSCOPE_BIN: a dmpscope already built (else a release build of this one).
+dmpscope() {
+  if [ -n "${DMPSCOPE_BIN:-}" ]; then "$DMPSCOPE_BIN" "$@"; else dmpscope "$@"; fi
+}
+dmpscope gen-sample --demos 2 --out "$out/pose2-zstd.mcap"
+dmpscope gen-sample --demos 3 --uncompressed --out "$out/pose3-plain.mcap"
+dmpscope regen "$out/pose2-zstd.mcap" --dm 10 --km 20 --out "$out/pose-in-frame-json.mcap"
+dmpscope gen-sample --demos 1 --seed 7 --out "$out/pose1.mcap"
 head -c 700 "$out/pose3-plain.mcap" > "$out/truncated.mcap"
 # The streaming path: the same MCAP seeds, an indexed uncompressed lab take
 # (message-by-message reads), and hostile files.
 mkdir -p fuzz/corpus/stream fuzz/corpus/bag
 cp "$out"/*.mcap fuzz/corpus/stream/
-cargo run -q --release -p dmpscope -- gen-sample --lab 3 --uncompressed --chunk-mb 1 --out fuzz/corpus/stream/lab-plain.mcap
-cargo run -q --release -p dmpscope -- gen-sample --hostile fuzz/corpus/hostile
+dmpscope gen-sample --lab 3 --uncompressed --chunk-mb 1 --out fuzz/corpus/stream/lab-plain.mcap
+dmpscope gen-sample --hostile fuzz/corpus/hostile
 cp fuzz/corpus/hostile/*.mcap fuzz/corpus/stream/
 cp fuzz/corpus/hostile/*.bag fuzz/corpus/bag/
 cp core/tests/bags/*/*.bag fuzz/corpus/bag/

@@ -9,6 +9,9 @@
 #   goal        the New target tab on, its goal dragged in the 3D view
 # Prints the summary the app writes with DMPSCOPE_FRAME_LOG (frame intervals
 # and egui CPU time per frame, recorded once the landscape is complete).
+# PINS=LIST pins those gain sets first (the app's --pin: Table I names or
+# DM:KM, comma separated), e.g. the six of issue 45's budget:
+#   PINS=extracted,pick,Hrstc1,Hrstc2,Hrstc3,Hrstc4
 # RUNS=N runs it N times and prints each run's CPU median and their median
 # (one run's median varies by about 0.2 ms here).
 set -euo pipefail
@@ -31,7 +34,11 @@ if [ "$runs" -gt 1 ]; then
 fi
 log=$(mktemp)
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d)}
-DMPSCOPE_FRAME_LOG="$log" ./target/release/dmpscope > /dev/null 2>&1 &
+pins=()
+if [ -n "${PINS:-}" ]; then
+  pins=(--pin "$PINS")
+fi
+DMPSCOPE_FRAME_LOG="$log" ./target/release/dmpscope "${pins[@]}" > /dev/null 2>&1 &
 app=$!
 sleep 12                       # the landscape fills in the background
 if [ "$what" != op ]; then

@@ -145,6 +145,16 @@ pub enum Error {
         /// One line per demo that was left out.
         reasons: Vec<String>,
     },
+    /// Every source was read but none gave a demonstration.
+    #[error(
+        "no demonstration found: every stream was skipped (see the notes above), or \
+         segmentation found no movement between rests"
+    )]
+    NoDemonstration,
+    /// A target a primitive cannot run at (a start, goal, duration or
+    /// orientation out of range), in words naming the argument.
+    #[error("{0}")]
+    Target(String),
     /// A setting is out of its range.
     #[error("invalid setting: {0}")]
     InvalidSetting(String),

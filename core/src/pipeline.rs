@@ -96,6 +96,90 @@ pub fn build_model<'a>(
     })
 }
 
+/// The model's settings as the CLI's flags name them (`--sg-window`,
+/// `--sg-order`, `--basis`, `--axis-sd-floor`, `--skill-mode`,
+/// `--unusable`, `--sg-seconds`, `--k-rot`, `--orientation-gains`), with
+/// their defaults: the CLI and the Python package build their model from
+/// these.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModelFlags {
+    /// Savitzky-Golay window (samples, odd).
+    pub sg_window: usize,
+    /// Savitzky-Golay polynomial order.
+    pub sg_order: usize,
+    /// Number of DMP basis functions.
+    pub basis: usize,
+    /// Floor of each axis's SD in S's standardisation (fraction).
+    pub axis_sd_floor: f64,
+    /// How the one skill follows each demo's start and goal.
+    pub skill_mode: crate::fit::settings::SkillMode,
+    /// What to do with a demo that cannot be used.
+    pub unusable: Unusable,
+    /// The Savitzky-Golay window as a duration, seconds.
+    pub sg_seconds: Option<f64>,
+    /// The weight of the summed orientation error (degrees) in J.
+    pub k_rot: f64,
+    /// Separate gains `[D/M, K/M]` for the orientation DMP.
+    pub orientation_gains: Option<[f64; 2]>,
+}
+
+impl Default for ModelFlags {
+    fn default() -> Self {
+        let (prep, dmp) = (PrepSettings::default(), DmpSettings::default());
+        Self {
+            sg_window: prep.sg_window,
+            sg_order: prep.sg_order,
+            basis: dmp.basis_functions,
+            axis_sd_floor: dmp.axis_sd_floor,
+            skill_mode: dmp.skill_mode,
+            unusable: Unusable::Skip,
+            sg_seconds: prep.sg_seconds,
+            k_rot: dmp.k_rot,
+            orientation_gains: dmp.orientation_gains,
+        }
+    }
+}
+
+impl ModelFlags {
+    /// The preprocessing settings.
+    pub fn prep(&self) -> PrepSettings {
+        PrepSettings {
+            sg_window: self.sg_window,
+            sg_order: self.sg_order,
+            sg_seconds: self.sg_seconds,
+            ..PrepSettings::default()
+        }
+    }
+
+    /// The DMP settings.
+    pub fn dmp(&self) -> DmpSettings {
+        DmpSettings {
+            basis_functions: self.basis,
+            axis_sd_floor: self.axis_sd_floor,
+            skill_mode: self.skill_mode,
+            k_rot: self.k_rot,
+            orientation_gains: self.orientation_gains,
+            ..DmpSettings::default()
+        }
+    }
+
+    /// Checks what the CLI's parsers check (a window duration above 0).
+    pub fn check(&self) -> Result<()> {
+        match self.sg_seconds {
+            Some(v) if !(v.is_finite() && v > 0.0) => Err(Error::InvalidSetting(format!(
+                "expected a duration in seconds above 0, got {v}"
+            ))),
+            _ => Ok(()),
+        }
+    }
+
+    /// The model of `demos` (see [`build_model`]).
+    pub fn build<'a>(&self, demos: impl IntoIterator<Item = &'a RawDemo>) -> Result<Built> {
+        self.check()?;
+        build_model(demos, &self.prep(), self.dmp(), self.unusable)
+    }
+}
+
 /// The span under which a Savitzky-Golay window of samples smooths too
 /// little (with 21 samples: a recording at about 670 Hz and more, a robot
 /// arm's log), seconds.

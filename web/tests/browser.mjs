@@ -292,6 +292,20 @@ try {
   await page.waitForTimeout(400);
   check((await state()).playback.t === paused.playback.t, "the space bar pauses it");
 
+  // Compare gain sets (issue 45): two pinned sets, each drawn in the 3D
+  // view for every demo and overlaid on the plots, at the gains of the
+  // Table I row they name.
+  await page.evaluate(() => { window.dmpscope_pin("Hrstc1"); window.dmpscope_pin("25:156.25"); });
+  const pinned = await until("two pinned sets drawn",
+    (s) => s.pins.length === 2 && s.pins.every((p) => p.paths_3d > 0) && s.plot_pin_lines > 0, 20000);
+  const hrstc1 = pinned.rows.find((r) => r.name === "Hrstc1");
+  check(pinned.pins[0].name === "Hrstc1" && pinned.pins[0].dm === hrstc1.dm && pinned.pins[0].km === hrstc1.km
+    && pinned.pins[1].dm === 25 && pinned.pins[1].km === 156.25,
+    `two sets pinned: ${pinned.pins.map((p) => `${p.name} (${p.dm}, ${p.km})`).join(", ")}`);
+  check(pinned.pins.every((p) => p.paths_3d === pinned.pins[0].paths_3d) && pinned.plot_pin_lines >= 2,
+    `their overlays drawn: ${pinned.pins.map((p) => p.paths_3d).join(" and ")} paths in the 3D view, ${pinned.plot_pin_lines} lines in the plots`);
+  figures.pinned_paths_3d = pinned.pins.map((p) => p.paths_3d);
+
   // A file dropped on the page (the sample again, as a second file).
   const sample = (await readFile(join(here, "..", "..", "assets", "reach10.mcap"))).toString("base64");
   await page.evaluate((b64) => {

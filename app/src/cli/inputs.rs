@@ -8,18 +8,19 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use dmpscope_core::SkillMode;
-use dmpscope_core::arrange::streams::arrange_source;
-use dmpscope_core::arrange::streams::unique_names;
+use dmpscope_core::arrange::pool::load_demos;
 use dmpscope_core::fit::settings::DmpSettings;
 use dmpscope_core::load::access::{FileAt, Meter, Metered, block_on};
+use dmpscope_core::load::flags::{DemosBy as CoreDemosBy, LoadFlags};
 use dmpscope_core::load::options::GapPolicy;
 use dmpscope_core::load::options::Grouping;
+use dmpscope_core::load::options::LoadOptions;
 use dmpscope_core::load::options::StreamFilter;
 use dmpscope_core::load::options::{Cut, SegmentPick, SegmentSettings};
-use dmpscope_core::load::options::{LoadOptions, UpAxis};
 use dmpscope_core::load::source::{SourceData, SourceStreams, load_streams, load_streams_at};
 use dmpscope_core::load::units::Units;
-use dmpscope_core::{Model, Notice, PrepSettings, RawDemo, Unusable, build_model};
+use dmpscope_core::pipeline::ModelFlags;
+use dmpscope_core::{Model, PrepSettings, RawDemo, Unusable, build_model};
 
 use super::output::print_notices;
 
@@ -159,36 +160,26 @@ pub enum UnitsArg {
 }
 
 impl LoadArgs {
-    /// The segmentation settings.
-    pub fn segment_settings(&self) -> SegmentSettings {
-        SegmentSettings {
-            rest_speed: self.rest_speed,
-            min_rest_s: self.min_rest,
-            min_segment_s: self.min_demo,
-            keep: self.segments,
-            ..SegmentSettings::default()
-        }
-    }
-
-    /// The loading options these flags describe.
-    pub fn options(&self) -> LoadOptions {
-        LoadOptions {
+    /// The flags as the core names them.
+    pub fn flags(&self) -> LoadFlags {
+        LoadFlags {
             frames: self.frames.clone(),
-            up: if self.y_up { UpAxis::YUp } else { UpAxis::ZUp },
+            fixed_frame: self.fixed_frame.clone(),
+            topics: self.topics.clone(),
+            exclude: self.exclude.clone(),
+            min_extent: self.min_extent,
+            y_up: self.y_up,
             demos: match self.demos {
-                DemosBy::Topic => Grouping::PerTopic,
-                DemosBy::File => Grouping::PerFile,
-                DemosBy::Segment => Grouping::Segmented(self.segment_settings()),
+                DemosBy::Topic => CoreDemosBy::Topic,
+                DemosBy::File => CoreDemosBy::File,
+                DemosBy::Segment => CoreDemosBy::Segment,
             },
+            rest_speed: self.rest_speed,
+            min_rest: self.min_rest,
+            min_demo: self.min_demo,
             gaps: match self.gaps {
                 GapsArg::Split => GapPolicy::Split,
                 GapsArg::Keep => GapPolicy::Keep,
-            },
-            fixed_frame: self.fixed_frame.clone(),
-            streams: StreamFilter {
-                topics: self.topics.clone(),
-                exclude: self.exclude.clone(),
-                min_extent_m: self.min_extent,
             },
             units: match self.units {
                 UnitsArg::M => Units::M,
@@ -196,10 +187,7 @@ impl LoadArgs {
                 UnitsArg::Mm => Units::Mm,
             },
             trim_rest: self.trim_rest,
-            rest: SegmentSettings {
-                keep: SegmentPick::All,
-                ..self.segment_settings()
-            },
+            segments: self.segments,
             drop_bad_orientation: self.drop_bad_orientation,
             cut: match self.cut {
                 CutArg::None => Cut::None,
@@ -208,48 +196,46 @@ impl LoadArgs {
         }
     }
 
+    /// The segmentation settings.
+    pub fn segment_settings(&self) -> SegmentSettings {
+        self.flags().segment_settings()
+    }
+
+    /// The loading options these flags describe.
+    pub fn options(&self) -> LoadOptions {
+        self.flags().options()
+    }
+
     /// The streams of every file, before grouping (`info --segment`).
     pub fn load_streams(&self) -> anyhow::Result<Vec<RawDemo>> {
-        self.load_with(|name, path, options| {
-            read_streams(name, path, options).map(|l| (l.demos, l.notices))
-        })
+        self.warn_of_ignored_segments();
+        let options = self.options();
+        let mut demos = Vec::new();
+        for path in &self.files {
+            let name = path.display().to_string();
+            let loaded = read_streams(&name, path, &options)?;
+            print_notices(&loaded.notices);
+            demos.extend(loaded.demos);
+        }
+        Ok(demos)
     }
 
     /// The demonstrations, grouped as asked, their names unique.
     pub fn load_demos(&self) -> anyhow::Result<Vec<RawDemo>> {
-        let mut demos = self.load_with(|name, path, options| {
-            let loaded = read_streams(name, path, options)?;
-            arrange_source(loaded, options).map(|l| (l.demos, l.notices))
-        })?;
-        if demos.is_empty() {
-            anyhow::bail!(
-                "no demonstration found: every stream was skipped (see the notes above), or \
-                 segmentation found no movement between rests"
-            );
-        }
-        unique_names(&mut demos);
-        Ok(demos)
+        self.warn_of_ignored_segments();
+        Ok(load_demos(
+            &self.files,
+            &self.options(),
+            &mut read_streams,
+            &mut print_notices,
+        )?)
     }
 
-    fn load_with(
-        &self,
-        load: impl Fn(&str, &Path, &LoadOptions) -> dmpscope_core::Result<(Vec<RawDemo>, Vec<Notice>)>,
-    ) -> anyhow::Result<Vec<RawDemo>> {
-        let options = self.options();
-        if self.segments != SegmentPick::All && self.demos != DemosBy::Segment {
-            print_notices(&[Notice::warning(format!(
-                "--segments {} applies only with --demos segment: every demo is kept",
-                self.segments.name()
-            ))]);
+    /// Warns that `--segments` does nothing without `--demos segment`.
+    fn warn_of_ignored_segments(&self) {
+        if let Some(notice) = self.flags().segments_notice() {
+            print_notices(&[notice]);
         }
-        let mut demos = Vec::new();
-        for path in &self.files {
-            let name = path.display().to_string();
-            let (loaded, notices) = load(&name, path, &options)?;
-            print_notices(&notices);
-            demos.extend(loaded);
-        }
-        Ok(demos)
     }
 }
 
@@ -315,29 +301,32 @@ fn positive_seconds(text: &str) -> Result<f64, String> {
 }
 
 impl InputArgs {
-    /// The preprocessing settings.
-    pub fn prep(&self) -> PrepSettings {
-        PrepSettings {
+    /// The model's flags as the core names them.
+    pub fn model_flags(&self) -> ModelFlags {
+        ModelFlags {
             sg_window: self.sg_window,
             sg_order: self.sg_order,
-            sg_seconds: self.sg_seconds,
-            ..PrepSettings::default()
-        }
-    }
-
-    /// The DMP settings.
-    pub fn dmp(&self) -> DmpSettings {
-        DmpSettings {
-            basis_functions: self.basis,
+            basis: self.basis,
             axis_sd_floor: self.axis_sd_floor,
             skill_mode: self.skill_mode,
+            unusable: self.unusable(),
+            sg_seconds: self.sg_seconds,
             k_rot: self.k_rot,
             orientation_gains: self
                 .orientation_gains
                 .as_deref()
                 .and_then(|g| Some([*g.first()?, *g.get(1)?])),
-            ..DmpSettings::default()
         }
+    }
+
+    /// The preprocessing settings.
+    pub fn prep(&self) -> PrepSettings {
+        self.model_flags().prep()
+    }
+
+    /// The DMP settings.
+    pub fn dmp(&self) -> DmpSettings {
+        self.model_flags().dmp()
     }
 
     /// The policy for unusable demos.

@@ -4,12 +4,13 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
-use dmpscope_core::landscape::grid as landscape;
+use dmpscope_core::extract::optimum::map_and_extract;
 use dmpscope_core::landscape::grid::{Axis, AxisScale, Grid, Landscape};
-use dmpscope_core::{Extraction, Model, Report, extract};
+use dmpscope_core::report::extraction::landscape_document;
+use dmpscope_core::{Extraction, Model};
 
 use super::inputs::{InputArgs, load_model};
-use super::output::{progress_bar, write_text};
+use super::output::{print_notices, progress_bar, write_text};
 
 /// The gain grid on the command line.
 #[derive(Debug, clap::Args)]
@@ -66,18 +67,6 @@ pub struct Args {
     out: Option<PathBuf>,
 }
 
-/// Computes the landscape with a progress bar on stderr.
-pub fn compute(model: &Arc<Model>, grid: Grid) -> anyhow::Result<Landscape> {
-    grid.validate()?;
-    let bar = progress_bar(grid.len() as u64, "landscape");
-    let cancel = AtomicBool::new(false);
-    let result = landscape::compute(model.clone(), grid, &cancel, &mut |done, _| {
-        bar.set_position(done as u64);
-    });
-    bar.finish_and_clear();
-    Ok(result?)
-}
-
 /// The landscape and extraction of the inputs.
 pub fn landscape_and_optimum(
     input: &InputArgs,
@@ -92,36 +81,27 @@ pub fn landscape_and_optimum(
         anyhow::bail!("--k must be finite and >= 0, got {}", grid.k);
     }
     let (raw, model) = load_model(input)?;
-    let land = compute(&model, grid.grid())?;
-    let optimum = extract(&model, &land, grid.k)?;
-    if optimum.on_edge() {
-        eprintln!(
-            "warning: the optimum lies on the edge of the gain box ({}): widen the range to see whether J keeps falling",
-            optimum.edges.describe()
-        );
-    }
+    let grid_of = grid.grid();
+    grid_of.validate()?;
+    let bar = progress_bar(grid_of.len() as u64, "landscape");
+    let cancel = AtomicBool::new(false);
+    let result = map_and_extract(&model, grid_of, grid.k, &cancel, &mut |done, _| {
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
+    let (land, optimum, notices) = result?;
+    print_notices(&notices);
     Ok((raw, model, land, optimum))
 }
 
-/// Writes the landscape JSON: the report of `dmpscope_core::report` (keys
-/// `k`, `demos`, `optimum`, `table`) plus the grid's axes `dm`, `km`, every
-/// quantity of the landscape's table by its key (`d_sum`, `s`, `a_peak`,
-/// `e_sum`)
-/// and `j`, as rows over D/M.
+/// Writes the landscape JSON
+/// ([`dmpscope_core::report::extraction::landscape_document`]): the report
+/// of `dmpscope_core::report` (keys `k`, `demos`, `optimum`, `table`) plus
+/// the grid's axes `dm`, `km`, every quantity of the landscape's table by
+/// its key (`d_sum`, `s`, `a_peak`, `e_sum`) and `j`, as rows over D/M.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (_, model, land, optimum) = landscape_and_optimum(&args.input, &args.grid)?;
-    let k = args.grid.k;
-    let report = Report::new(&model, Some(&optimum), k);
-    let mut doc = serde_json::to_value(&report)?;
-    if let Some(map) = doc.as_object_mut() {
-        map.insert("dm".into(), serde_json::to_value(&land.dm)?);
-        map.insert("km".into(), serde_json::to_value(&land.km)?);
-        for q in dmpscope_core::landscape::quantity::ALL {
-            let rows = land.rows(land.values(q));
-            map.insert(q.about().key.into(), serde_json::to_value(rows)?);
-        }
-        map.insert("j".into(), serde_json::to_value(land.rows(&land.j(k)))?);
-    }
+    let doc = landscape_document(&model, &land, &optimum, args.grid.k)?;
     let mut text = serde_json::to_string(&doc)?;
     text.push('\n');
     write_text(args.out.as_deref(), &text)

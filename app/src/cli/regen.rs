@@ -9,18 +9,19 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use dmpscope_core::export::dmp_doc::{DocContext, dmp_document};
+use dmpscope_core::export::dmp_doc::run_document;
 use dmpscope_core::export::recording::{
     ExportPath, TopicNames, TrajectoryExport, demo_paths, write_export_mcap,
 };
 use dmpscope_core::export::ros_traj::{TimedOrientation, TimedPath};
 use dmpscope_core::fit::orientation;
+use dmpscope_core::generalise::run::{Run, Which, runs, unit_quaternion};
 use dmpscope_core::load::formats::ROLE_REGENERATED;
 use dmpscope_core::report::text::{pad_right, width};
-use dmpscope_core::{Generalised, Model, Primitive, RawDemo, Scaling, Skill, Target, rotation};
+use dmpscope_core::{Generalised, Model, RawDemo, Scaling, Target, rotation};
 
 use super::inputs::{InputArgs, load_model};
-use super::output::write_text;
+use super::output::{print_notices, write_text};
 
 /// Spatial scaling on the command line.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -79,16 +80,6 @@ pub struct Args {
     out: Option<PathBuf>,
 }
 
-/// One path to report and write.
-struct Run {
-    primitive: Primitive,
-    out: Generalised,
-    /// The model's demo index, for a demo's own comparison and stamps.
-    demo: Option<usize>,
-    /// Skills: the forcing SD and members.
-    skill: Option<Skill>,
-}
-
 /// A point argument of three numbers.
 pub(super) fn vec3(what: &str, v: &Option<Vec<f64>>) -> anyhow::Result<Option<Vec3>> {
     match v.as_deref() {
@@ -107,17 +98,12 @@ fn quaternion(what: &str, v: &Option<Vec<f64>>) -> anyhow::Result<Option<[f64; 4
     let &[x, y, z, w] = v else {
         anyhow::bail!("{what} takes four numbers QX QY QZ QW, got {}", v.len());
     };
-    let q = [x, y, z, w];
-    let norm = q.iter().map(|c| c * c).sum::<f64>().sqrt();
-    if !(norm.is_finite() && norm > 1e-6) {
-        anyhow::bail!(
-            "{what} must be a rotation: a quaternion of finite, non-zero norm, got {q:?}"
-        );
-    }
-    if (norm - 1.0).abs() > 1e-9 {
-        eprintln!("note: {what} {q:?} has norm {norm:.6}; normalised to unit");
-    }
-    Ok(Some(q.map(|c| c / norm)))
+    let (q, note) = unit_quaternion(what, [x, y, z, w]).map_err(|e| match e {
+        dmpscope_core::Error::InvalidSetting(m) => anyhow::anyhow!(m),
+        other => other.into(),
+    })?;
+    print_notices(note.as_slice());
+    Ok(Some(q))
 }
 
 /// Checks the gains are positive numbers.
@@ -193,23 +179,8 @@ fn write_json(
     frame_id: String,
     scaling: Scaling,
 ) -> anyhow::Result<()> {
-    let doc = dmp_document(
-        &r.primitive,
-        &r.out,
-        DocContext {
-            demos: match &r.skill {
-                Some(s) => s.demos.clone(),
-                None => vec![r.primitive.name.clone()],
-            },
-            source: if r.skill.is_some() { "skill" } else { "demo" },
-            basis: (&model.basis().centres, &model.basis().widths),
-            frame_id,
-            band: r.skill.as_ref().map(|_| r.out.band.clone()),
-            scaling,
-            recorded_units: args.input.load.options().units,
-        },
-    )
-    .with_context(|| format!("{}: not written", out.display()))?;
+    let doc = run_document(model, r, frame_id, scaling, args.input.load.options().units)
+        .with_context(|| format!("{}: not written", out.display()))?;
     let mut text = serde_json::to_string(&doc)?;
     text.push('\n');
     write_text(Some(out), &text)?;
@@ -250,36 +221,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 }
 
 fn make_runs(model: &Model, args: &Args, target: &Target) -> anyhow::Result<Vec<Run>> {
-    let run_of = |primitive: Primitive, demo, skill| -> anyhow::Result<Run> {
-        let out = primitive.rollout(target).map_err(|e| match e {
-            dmpscope_core::error::Error::InvalidSetting(m) => anyhow::anyhow!(m),
-            other => other.into(),
-        })?;
-        Ok(Run {
-            primitive,
-            out,
-            demo,
-            skill,
-        })
+    let which = match (args.skill, args.demo) {
+        (true, _) => Which::Skill,
+        (false, Some(d)) => Which::Demo(d - 1),
+        (false, None) => Which::All,
     };
-    if args.skill {
-        let skill = Skill::new(model, args.dm, args.km, target.scaling)?;
-        return Ok(vec![run_of(skill.primitive.clone(), None, Some(skill))?]);
-    }
-    let which: Vec<usize> = match args.demo {
-        Some(d) => vec![d - 1],
-        None => (0..model.demos().len()).collect(),
-    };
-    which
-        .into_iter()
-        .map(|i| {
-            run_of(
-                Primitive::of_demo(model, i, args.dm, args.km)?,
-                Some(i),
-                None,
-            )
-        })
-        .collect()
+    Ok(runs(model, args.dm, args.km, which, target)?)
 }
 
 /// Whether a run is at its demo's own start, goal and duration.

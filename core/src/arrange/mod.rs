@@ -3,12 +3,13 @@
 //! breaks in time ([`gaps`]), grouped one per topic, file or segment
 //! ([`group`], [`segment`]), cut at their farthest point if asked and
 //! their loops said ([`shape`]), their end rests measured or trimmed
-//! ([`rest`]).
+//! ([`rest`]). [`pool`] loads several sources into one list of demos.
 //!
 //! May use: load.
 
 pub mod gaps;
 pub mod group;
+pub mod pool;
 pub mod rest;
 pub mod segment;
 pub mod shape;

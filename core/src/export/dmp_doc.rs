@@ -324,6 +324,35 @@ pub fn dmp_document(
     Ok(doc)
 }
 
+/// The export of one run of [`crate::generalise::run::runs`]: a demo's
+/// DMP (`source` `demo`) or the skill's (`skill`, with its band), in
+/// `frame_id`, the recordings having been in `recorded_units`; as
+/// `dmpscope regen --out F.json` writes it.
+pub fn run_document(
+    model: &crate::landscape::model::Model,
+    run: &crate::generalise::run::Run,
+    frame_id: String,
+    scaling: Scaling,
+    recorded_units: crate::load::units::Units,
+) -> Result<DmpDocument> {
+    dmp_document(
+        &run.primitive,
+        &run.out,
+        DocContext {
+            demos: match &run.skill {
+                Some(s) => s.demos.clone(),
+                None => vec![run.primitive.name.clone()],
+            },
+            source: if run.skill.is_some() { "skill" } else { "demo" },
+            basis: (&model.basis().centres, &model.basis().widths),
+            frame_id,
+            band: run.skill.as_ref().map(|_| run.out.band.clone()),
+            scaling,
+            recorded_units,
+        },
+    )
+}
+
 /// The equations in words, with the scaling's.
 fn equations(scaling: Scaling) -> Equations {
     Equations {

@@ -4,10 +4,14 @@
 
 use serde::Serialize;
 
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
 use crate::error::{Error, Result};
 use crate::extract::nelder_mead;
-use crate::landscape::grid::Landscape;
+use crate::landscape::grid::{Grid, Landscape};
 use crate::landscape::model::{Model, PointEval};
+use crate::notice::Notice;
 
 /// The simplex span (in the axes' coordinates) at which the refinement stops.
 pub const SPAN_TOLERANCE: f64 = 1e-6;
@@ -182,11 +186,7 @@ pub fn refine(
 
 /// Extracts the gains minimising `J = S + k sum d` from a complete landscape.
 pub fn extract(model: &Model, landscape: &Landscape, k: f64) -> Result<Extraction> {
-    if !k.is_finite() || k < 0.0 {
-        return Err(Error::InvalidSetting(format!(
-            "k must be finite and >= 0, got {k}"
-        )));
-    }
+    check_k(k)?;
     let r = refine(landscape, &landscape.j(k), |dm, km| model.j(dm, km, k))
         .ok_or_else(|| Error::InvalidSetting("the landscape has no computed point".into()))?;
     let eval = model.evaluate(r.dm, r.km);
@@ -200,6 +200,45 @@ pub fn extract(model: &Model, landscape: &Landscape, k: f64) -> Result<Extractio
         iterations: r.iterations,
         converged: r.converged,
     })
+}
+
+/// Checks J's weight `k` (finite, >= 0).
+pub fn check_k(k: f64) -> Result<()> {
+    if !k.is_finite() || k < 0.0 {
+        return Err(Error::InvalidSetting(format!(
+            "k must be finite and >= 0, got {k}"
+        )));
+    }
+    Ok(())
+}
+
+/// The landscape of `model` over `grid` (all cores with the `parallel`
+/// feature; `progress(done, total)` between tiles, [`Error::Cancelled`]
+/// once `cancel` is set) and J's optimum on it for `k`, with a warning
+/// when the optimum lies on the box's edge: what the CLI's `landscape`,
+/// `extract` and the Python package compute first.
+pub fn map_and_extract(
+    model: &Arc<Model>,
+    grid: Grid,
+    k: f64,
+    cancel: &AtomicBool,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<(Landscape, Extraction, Vec<Notice>)> {
+    check_k(k)?;
+    let landscape = crate::landscape::grid::compute(Arc::clone(model), grid, cancel, progress)?;
+    let optimum = extract(model, &landscape, k)?;
+    let notices = optimum
+        .on_edge()
+        .then(|| {
+            Notice::warning(format!(
+                "the optimum lies on the edge of the gain box ({}): widen the range to see \
+                 whether J keeps falling",
+                optimum.edges.describe()
+            ))
+        })
+        .into_iter()
+        .collect();
+    Ok((landscape, optimum, notices))
 }
 
 /// The least J for `k` among the gains whose largest peak acceleration (any

@@ -5,7 +5,8 @@
 //! samples gathered by [`collect`] into one [`demo::RawDemo`] per topic and
 //! key, with TF ([`tf`]), units ([`units`]) and orientation checks
 //! ([`orientation_check`]) applied. [`options`] is what the user asks of
-//! loading. Turning streams into demos is [`crate::arrange`]'s.
+//! loading, [`flags`] the same by the CLI's names. Turning streams into
+//! demos is [`crate::arrange`]'s.
 //!
 //! May use: nothing.
 
@@ -14,6 +15,7 @@ pub mod collect;
 pub mod csv;
 pub mod decode;
 pub mod demo;
+pub mod flags;
 pub mod formats;
 pub mod mcap;
 pub mod options;

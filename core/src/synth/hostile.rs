@@ -231,18 +231,24 @@ fn bz2_zeros(mib: usize) -> Vec<u8> {
     enc.finish().unwrap_or_default()
 }
 
-/// Every hostile file.
-pub fn hostile_files() -> Vec<Hostile> {
-    let bomb = zstd_zeros(48);
-    let plain = pose_records(20);
-    let mut top_huge = rec(0x05, &message(0));
-    top_huge[1..9].copy_from_slice(&(1u64 << 60).to_le_bytes());
-    let h = |name, what, bytes, loads| Hostile {
+/// A hostile file's entry.
+fn h(name: &'static str, what: &'static str, bytes: Vec<u8>, loads: bool) -> Hostile {
+    Hostile {
         name,
         what,
         bytes,
         loads,
-    };
+    }
+}
+
+/// Every hostile file.
+pub fn hostile_files() -> Vec<Hostile> {
+    [bombs(), lies_and_floods()].concat()
+}
+
+/// Chunks that decompress to far more than they should.
+fn bombs() -> Vec<Hostile> {
+    let bomb = zstd_zeros(48);
     vec![
         h(
             "zstd_bomb.mcap",
@@ -286,6 +292,15 @@ pub fn hostile_files() -> Vec<Hostile> {
             bag("bz2", 200 << 20, &bz2_zeros(64)),
             false,
         ),
+    ]
+}
+
+/// Sizes that lie and floods of records.
+fn lies_and_floods() -> Vec<Hostile> {
+    let plain = pose_records(20);
+    let mut top_huge = rec(0x05, &message(0));
+    top_huge[1..9].copy_from_slice(&(1u64 << 60).to_le_bytes());
+    vec![
         h(
             "record_2e60.mcap",
             "a record declaring 2^60 bytes",

@@ -89,6 +89,20 @@ pub struct Pick {
     pub robot: RobotGains,
 }
 
+impl Pick {
+    /// The pick in one line, as `extract` prints it: `picked by compliant:
+    /// D/M 12.3, K/M 45.6 (zeta 0.900)`.
+    pub fn headline(&self) -> String {
+        format!(
+            "picked by {}: D/M {}, K/M {} (zeta {:.3})",
+            self.rule.name(),
+            crate::extract::allowed::numbers::num(self.dm),
+            crate::extract::allowed::numbers::num(self.km),
+            self.zeta
+        )
+    }
+}
+
 /// The 2 % settling time of the spring-damper at a gain pair (method.md
 /// section 11): `ln(50) / sigma`, `sigma` the decay rate of its slowest
 /// mode.

@@ -99,13 +99,7 @@ impl Allowed {
         let mut s = String::new();
         let region = self.acceptable.text();
         let picked = match &self.pick {
-            Some(p) => format!(
-                "picked by {}: D/M {}, K/M {} (zeta {:.3})",
-                p.rule.name(),
-                num(p.dm),
-                num(p.km),
-                p.zeta
-            ),
+            Some(p) => p.headline(),
             None => "no pick".to_owned(),
         };
         if self.j_flat {

@@ -487,11 +487,39 @@ impl DiagnosticsJob {
     /// Computes every remaining part (on all cores with `parallel`),
     /// calling `progress(done)` after each batch.
     pub fn run(&mut self, progress: &(dyn Fn(usize) + Sync)) {
-        // Batches of a few per core keep the cores busy and report often.
-        let batch = 4 * std::thread::available_parallelism().map_or(1, |n| n.get());
+        let batch = run_batch();
         while !self.step_par(batch) {
             progress(self.done);
         }
         progress(self.done);
     }
+
+    /// As [`DiagnosticsJob::run`] (the same batches, so the same numbers),
+    /// calling `progress(done, total)` after each batch and stopping with
+    /// [`crate::error::Error::Cancelled`] once `cancel` is set (the parts
+    /// done so far stay; calling it again goes on).
+    pub fn run_cancellable(
+        &mut self,
+        cancel: &std::sync::atomic::AtomicBool,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> crate::error::Result<()> {
+        let batch = run_batch();
+        loop {
+            if cancel.load(std::sync::atomic::Ordering::Relaxed) {
+                return Err(crate::error::Error::Cancelled);
+            }
+            let done = self.step_par(batch);
+            let (now, total) = self.progress();
+            progress(now, total);
+            if done {
+                return Ok(());
+            }
+        }
+    }
+}
+
+/// Resampled extractions per batch of [`DiagnosticsJob::run`]: a few per
+/// core keep the cores busy and report often.
+fn run_batch() -> usize {
+    4 * std::thread::available_parallelism().map_or(1, |n| n.get())
 }
