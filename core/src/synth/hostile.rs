@@ -336,5 +336,15 @@ fn lies_and_floods() -> Vec<Hostile> {
             indexed(1, 65_000, None),
             true,
         ),
+        h(
+            "channel_flood_cut.mcap",
+            "the same cut at 1 MiB: no summary, 27,000 channels walked",
+            {
+                let mut f = indexed(1, 65_000, None);
+                f.truncate(1 << 20);
+                f
+            },
+            true,
+        ),
     ]
 }
