@@ -22,8 +22,9 @@ runs=${RUNS:-1}
 if [ "$runs" -gt 1 ]; then
   medians=()
   for r in $(seq 1 "$runs"); do
-    line=$(RUNS=1 "$self" "$what" | grep '^cpu_ms')
-    echo "run $r: $line"
+    out=$(RUNS=1 "$self" "$what")
+    line=$(grep '^cpu_ms' <<<"$out")
+    echo "run $r: $line; $(grep '^thread_cpu_ms' <<<"$out" || true)"
     medians+=("$(awk '{print $3}' <<<"$line")")
   done
   printf '%s\n' "${medians[@]}" | sort -n | awk '{a[NR] = $1} END {

@@ -1,6 +1,7 @@
 //! Gain sets compared in the app (issue 45, egui_kittest): three sets
 //! pinned through the Compare section give three overlays in the 3D view
-//! (every demo regenerated at each) and in the Demo tab's plots, the
+//! (every demo regenerated at each) and in the Demo tab's position and
+//! orientation plots, the
 //! comparison's numbers are Table I's for the same gains, a set removed
 //! takes its overlays with it, and the figure of what is on screen is an
 //! SVG with a path per set and demo.
@@ -13,8 +14,12 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 
 fn harness() -> Harness<'static, DmpApp> {
+    harness_of(support::sample_path())
+}
+
+fn harness_of(path: std::path::PathBuf) -> Harness<'static, DmpApp> {
     let settings = Settings::with_grid_points(16);
-    let sources = vec![Source::Path(support::sample_path())];
+    let sources = vec![Source::Path(path)];
     let mut h = Harness::builder()
         .with_size([1280.0, 800.0])
         .build_eframe(move |_cc| DmpApp::with_runner(settings, sources, Runner::inline()));
@@ -97,6 +102,38 @@ fn three_pinned_sets_are_drawn_compared_and_removed() {
     assert_eq!(names, ["Extracted", "40:400"]);
     assert_eq!(h.state().view().view3d.pin_paths, vec![demos; 2]);
     assert_eq!(h.state().view().plot_pin_lines, 2);
+}
+
+/// Pins `text` (comma-separated gains) through the Compare section.
+fn pin(h: &mut Harness<'static, DmpApp>, text: &str) {
+    h.get_by_label("Compare gain sets").click();
+    h.run_steps(2);
+    h.get_by_role(egui::accesskit::Role::TextInput).click();
+    h.run_steps(1);
+    h.get_by_role(egui::accesskit::Role::TextInput)
+        .type_text(text);
+    h.run_steps(1);
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "Pin")
+        .click();
+    h.run_steps(3);
+}
+
+#[test]
+fn the_orientation_plots_overlay_the_pins_too() {
+    let mut h = harness_of(support::repo().join("assets/planted8.mcap"));
+    pin(&mut h, "Hrstc1, 40:400");
+    assert_eq!(h.state().view().pins.list().len(), 2);
+    assert_eq!(h.state().view().plot_pin_lines, 2, "position overlays");
+    h.get_by_role_and_label(egui::accesskit::Role::Button, "orientation")
+        .click();
+    h.run_steps(2);
+    assert!(h.state().view().orientation_plots);
+    assert_eq!(h.state().view().plot_pin_lines, 2, "orientation overlays");
+    // A set removed leaves the orientation plots too.
+    let remove: Vec<_> = h.get_all_by_label("remove").collect();
+    remove[0].click();
+    h.run_steps(3);
+    assert_eq!(h.state().view().plot_pin_lines, 1);
 }
 
 #[test]

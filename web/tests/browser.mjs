@@ -295,12 +295,12 @@ try {
   // Compare gain sets (issue 45): two pinned sets, each drawn in the 3D
   // view for every demo and overlaid on the plots, at the gains of the
   // Table I row they name.
-  await page.evaluate(() => { window.dmpscope_pin("Hrstc1"); window.dmpscope_pin("25:156.25"); });
+  await page.evaluate(() => { window.dmpscope_pin("Hrstc4"); window.dmpscope_pin("40:400"); });
   const pinned = await until("two pinned sets drawn",
     (s) => s.pins.length === 2 && s.pins.every((p) => p.paths_3d > 0) && s.plot_pin_lines > 0, 20000);
-  const hrstc1 = pinned.rows.find((r) => r.name === "Hrstc1");
-  check(pinned.pins[0].name === "Hrstc1" && pinned.pins[0].dm === hrstc1.dm && pinned.pins[0].km === hrstc1.km
-    && pinned.pins[1].dm === 25 && pinned.pins[1].km === 156.25,
+  const hrstc4 = pinned.rows.find((r) => r.name === "Hrstc4");
+  check(pinned.pins[0].name === "Hrstc4" && pinned.pins[0].dm === hrstc4.dm && pinned.pins[0].km === hrstc4.km
+    && pinned.pins[1].dm === 40 && pinned.pins[1].km === 400,
     `two sets pinned: ${pinned.pins.map((p) => `${p.name} (${p.dm}, ${p.km})`).join(", ")}`);
   check(pinned.pins.every((p) => p.paths_3d === pinned.pins[0].paths_3d) && pinned.plot_pin_lines >= 2,
     `their overlays drawn: ${pinned.pins.map((p) => p.paths_3d).join(" and ")} paths in the 3D view, ${pinned.plot_pin_lines} lines in the plots`);
@@ -372,13 +372,17 @@ try {
 
   // The New target tab (right panel) and its "Run the DMP at a new target"
   // box: the selected demo runs at its own target, ending at its goal.
-  await click(1190, 37);
-  await click(916, 117);
+  const centre = ([x, y, w, h]) => [x + w / 2, y + h / 2];
+  await click(...centre((await state()).buttons["New target"]));
+  const tab = await until("the New target tab", (s) => s.buttons["Run at a new target"], 10000);
+  await click(...centre(tab.buttons["Run at a new target"]));
   const moved = await until("the run at a new target", (s) => s.generalised?.name, 10000);
   check(!moved.generalised.error && moved.generalised.final_error < 0.01,
     `the run at a new target ends at its goal (${JSON.stringify(moved.generalised)})`);
   await page.screenshot({ path: join(out, "new_target.png") });
-  await click(916, 69); // the box again, now at the top of the tab: off
+  // The box again (it moves to the top of the tab once on): off.
+  await page.waitForTimeout(300);
+  await click(...centre((await state()).buttons["Run at a new target"]));
   await until("the run switched off", (s) => s.generalised === null, 10000);
 
   // Settings persist in the browser's storage: a preset chosen, the page

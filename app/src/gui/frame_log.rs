@@ -2,7 +2,12 @@
 //! records the interval between frames and egui's CPU time per frame and
 //! rewrites a summary (medians, 95th percentiles, maxima) to `path` every
 //! 10 frames, with where the 3D view drew the new target's start and goal
-//! (so `tests/frame_time.sh` can drag them).
+//! (so `tests/frame_time.sh` can drag them). Where Linux tells it
+//! (`/proc/thread-self/schedstat`), it also records the app thread's CPU
+//! time from one frame to the next (everything the thread ran: `ui`,
+//! tessellation, the renderer's submission and the present) and the time
+//! the thread waited for a core: egui's CPU time is wall time, which grows
+//! when the rasteriser's threads hold the cores.
 
 use std::path::PathBuf;
 use web_time::Instant;
@@ -13,6 +18,9 @@ pub struct FrameLog {
     last: Option<Instant>,
     intervals_ms: Vec<f64>,
     cpu_ms: Vec<f64>,
+    thread_ms: Vec<f64>,
+    wait_ms: Vec<f64>,
+    last_sched: Option<[u64; 2]>,
     handles: Option<[[f32; 2]; 2]>,
 }
 
@@ -25,6 +33,9 @@ impl FrameLog {
             last: None,
             intervals_ms: Vec::new(),
             cpu_ms: Vec::new(),
+            thread_ms: Vec::new(),
+            wait_ms: Vec::new(),
+            last_sched: None,
             handles: None,
         })
     }
@@ -45,6 +56,12 @@ impl FrameLog {
         if let Some(cpu) = cpu_s {
             self.cpu_ms.push(f64::from(cpu) * 1e3);
         }
+        let sched = thread_sched_ns();
+        if let (Some([run0, wait0]), Some([run1, wait1])) = (self.last_sched, sched) {
+            self.thread_ms.push(run1.saturating_sub(run0) as f64 * 1e-6);
+            self.wait_ms.push(wait1.saturating_sub(wait0) as f64 * 1e-6);
+        }
+        self.last_sched = sched;
         if self.intervals_ms.len() % 10 == 9 {
             let mut text = format!(
                 "frames {}\ninterval_ms {}\ncpu_ms {}\n",
@@ -52,6 +69,13 @@ impl FrameLog {
                 summary(&self.intervals_ms),
                 summary(&self.cpu_ms)
             );
+            if !self.thread_ms.is_empty() {
+                text.push_str(&format!(
+                    "thread_cpu_ms {}\nthread_wait_ms {}\n",
+                    summary(&self.thread_ms),
+                    summary(&self.wait_ms)
+                ));
+            }
             if let Some([s, g]) = self.handles {
                 text.push_str(&format!(
                     "handles start {:.0} {:.0} goal {:.0} {:.0}\n",
@@ -66,8 +90,19 @@ impl FrameLog {
     pub fn reset(&mut self) {
         self.intervals_ms.clear();
         self.cpu_ms.clear();
+        self.thread_ms.clear();
+        self.wait_ms.clear();
+        self.last_sched = None;
         self.last = None;
     }
+}
+
+/// This thread's time on a core and waiting for one so far, ns (Linux's
+/// scheduler statistics; `None` elsewhere).
+fn thread_sched_ns() -> Option<[u64; 2]> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let mut fields = text.split_whitespace().map(str::parse::<u64>);
+    Some([fields.next()?.ok()?, fields.next()?.ok()?])
 }
 
 fn summary(v: &[f64]) -> String {

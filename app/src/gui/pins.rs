@@ -6,6 +6,7 @@
 
 use std::sync::Arc;
 
+use dmpscope_core::fit::orientation::OrientationRollout;
 use dmpscope_core::generalise::primitive::Generalised;
 use dmpscope_core::report::compare::{CompareRow, GainSet, MAX_SETS, Runs, compare, target_run};
 use dmpscope_core::{Model, Rollout};
@@ -29,6 +30,9 @@ pub struct Pin {
     pub shown: bool,
     /// Its regeneration of every model demo, in model order.
     regen: Vec<Rollout>,
+    /// Its regenerated orientation of every model demo (`None` for a demo
+    /// without orientation).
+    turns: Vec<Option<OrientationRollout>>,
     /// Its run at the target, or why there is none.
     target: Option<Result<Generalised, String>>,
     /// Every demo's standardised forcing term `f[demo][k]` (the Forcing
@@ -120,6 +124,7 @@ impl Pins {
             colour,
             shown: true,
             regen: Vec::new(),
+            turns: Vec::new(),
             target: None,
             forcing: Vec::new(),
         });
@@ -189,6 +194,9 @@ impl Pins {
             pin.regen = (0..model.demos().len())
                 .map(|i| model.rollout(i, pin.dm, pin.km))
                 .collect();
+            pin.turns = (0..model.demos().len())
+                .map(|i| model.orientation_rollout(i, pin.dm, pin.km))
+                .collect();
             pin.forcing = model.similarity().standardised(pin.dm, pin.km).f;
             pin.target = spec.map(|s| {
                 let runs = match s.source {
@@ -225,6 +233,15 @@ impl Pins {
             .iter()
             .filter(|p| p.shown && !p.regen.is_empty())
             .map(|p| (p, p.regen.as_slice()))
+    }
+
+    /// The shown pins with their regenerated orientation of demo `i` (those
+    /// whose demo `i` has one).
+    pub fn shown_turns(&self, i: usize) -> impl Iterator<Item = (&Pin, &OrientationRollout)> {
+        self.list
+            .iter()
+            .filter(|p| p.shown)
+            .filter_map(move |p| p.turns.get(i)?.as_ref().map(|t| (p, t)))
     }
 
     /// The shown pins with demo `i`'s standardised forcing term.

@@ -92,8 +92,8 @@ pub struct ViewState {
     pub exclude_text: String,
     /// The segmentation thresholds, kept while demos are not segmented.
     pub segment: SegmentSettings,
-    /// Where the gain presets' buttons were drawn last frame, by name
-    /// (what the browser tests click).
+    /// Where the gain presets' buttons, the "New target" tab and its
+    /// switch were drawn last frame, by name (what the browser tests click).
     pub preset_buttons: std::collections::BTreeMap<&'static str, egui::Rect>,
     /// The pinned gain sets and what they show (issue 45).
     pub pins: super::pins::Pins,

@@ -104,8 +104,11 @@ fn generalise_switch_ui(
              from a new start to a new goal over a new duration: what a robot does with them.",
         );
     }
-    if ui
-        .checkbox(&mut on, "Run the DMP at a new target")
+    let switch = ui.checkbox(&mut on, "Run the DMP at a new target");
+    cx.view
+        .preset_buttons
+        .insert("Run at a new target", switch.rect);
+    if switch
         .on_hover_text(
             "The selected demo (or the skill of all demos) at the operating point's gains, \
              from a new start to a new goal over a new duration",

@@ -22,7 +22,8 @@ pub fn plots_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         ui.selectable_value(&mut cx.view.right, RightTab::Demo, "Demo");
         ui.selectable_value(&mut cx.view.right, RightTab::Forcing, "Forcing terms");
         ui.selectable_value(&mut cx.view.right, RightTab::TradeOff, "Trade-off");
-        ui.selectable_value(&mut cx.view.right, RightTab::Generalised, "New target");
+        let tab = ui.selectable_value(&mut cx.view.right, RightTab::Generalised, "New target");
+        cx.view.preset_buttons.insert("New target", tab.rect);
     });
     ui.separator();
     match cx.view.right {
@@ -85,25 +86,40 @@ fn demo_tab(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>, model: &Model) {
         });
     }
     let selected = view.selected;
-    let pins: Vec<plots::PlotPin<'_>> = view
-        .pins
-        .shown_regen()
-        .filter_map(|(p, regen)| {
-            Some(plots::PlotPin {
-                name: &p.name,
-                colour: egui::Color32::from_rgb(p.colour[0], p.colour[1], p.colour[2]),
-                rollout: regen.get(selected)?,
-            })
-        })
-        .collect();
-    view.plot_pin_lines = pins.len();
-    let hovered = match (turn, view.orientation_plots) {
-        (Some(turn), true) => plots::show_orientation(ui, demo, turn, view.t).flatten(),
-        _ => session
-            .paths()
-            .get(view.selected)
-            .and_then(|rollout| plots::show(ui, demo, rollout, view.t, &pins)),
+    let colour = |c: [u8; 3]| egui::Color32::from_rgb(c[0], c[1], c[2]);
+    let drawn = match (turn, view.orientation_plots) {
+        (Some(turn), true) => {
+            let pins: Vec<plots::PlotPin<'_, _>> = view
+                .pins
+                .shown_turns(selected)
+                .map(|(p, regen)| plots::PlotPin {
+                    name: &p.name,
+                    colour: colour(p.colour),
+                    regen,
+                })
+                .collect();
+            plots::show_orientation(ui, demo, turn, view.t, &pins)
+        }
+        _ => {
+            let pins: Vec<plots::PlotPin<'_, _>> = view
+                .pins
+                .shown_regen()
+                .filter_map(|(p, regen)| {
+                    Some(plots::PlotPin {
+                        name: &p.name,
+                        colour: colour(p.colour),
+                        regen: regen.get(selected)?,
+                    })
+                })
+                .collect();
+            session
+                .paths()
+                .get(selected)
+                .map(|rollout| plots::show(ui, demo, rollout, view.t, &pins))
+        }
     };
+    view.plot_pin_lines = drawn.map_or(0, |d| d.pin_items);
+    let hovered = drawn.and_then(|d| d.hovered);
     if let Some(t) = hovered {
         view.t = t;
     }

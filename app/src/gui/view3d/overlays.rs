@@ -5,7 +5,10 @@
 use dmpscope_core::geom;
 use glam::Vec3;
 
-use super::scene::{DARK, Frame, SceneInput, SceneTarget, SegmentList, at_time, lighter, rgba};
+use super::scene::{
+    DARK, Frame, PIN_PATH_POINTS, SceneInput, SceneTarget, SegmentList, at_time, decimate, lighter,
+    rgba,
+};
 
 /// Triads along every shown demo (solid) and its regeneration (lighter),
 /// one every 0.8 grid steps of path, and larger ones at the start and goal
@@ -62,11 +65,12 @@ pub(super) fn pinned(out: &mut SegmentList, frame: &Frame, input: &SceneInput<'_
                 if !input.shown(i) {
                     continue;
                 }
-                let path: Vec<Vec3> = r.y.iter().map(|p| frame.local(d.p0 + p)).collect();
+                let local = |p: &geom::Vec3| frame.local(d.p0 + p);
+                let path: Vec<Vec3> = decimate(&r.y, PIN_PATH_POINTS).iter().map(local).collect();
                 out.path(&path, c, 1.6 * ppp, 0.0);
                 drawn += 1;
                 if i == sel
-                    && let Some(p) = at_time(&path, input.t)
+                    && let Some(p) = at_time(&r.y.iter().map(local).collect::<Vec<_>>(), input.t)
                 {
                     out.dot(p, DARK, 9.0 * ppp);
                     out.dot(p, rgba(lighter(pin.colour, 0.2), 1.0), 6.0 * ppp);
