@@ -207,7 +207,7 @@ impl<T: PlotItem> PlotItem for SnappedBounds<T> {
 
     fn bounds(&self) -> PlotBounds {
         let b = self.inner.bounds();
-        if !(self.step.is_finite() && self.step > 0.0) || !b.is_valid_y() {
+        if !self.step.is_finite() || self.step <= 0.0 || !b.is_valid_y() {
             return b;
         }
         let (lo, hi) = (b.min()[1], b.max()[1]);
@@ -254,7 +254,7 @@ mod tests {
 
     #[test]
     fn the_content_key_changes_with_any_value() {
-        let id = egui::Id::new("t");
+        let id = egui::Id::unique("cached lines test");
         let a = CachedLines::new(
             "a",
             Color32::RED,

@@ -67,8 +67,12 @@ pub struct FrameWatch {
     /// Whether the landscape was computing at the last frame.
     pub(super) last_computing: bool,
     /// The app's own `ui` time of each frame while computing (the first
-    /// 5000), ms: the page's own main-thread work per frame.
+    /// 5000), ms: the page's own main-thread work per frame. The frame
+    /// that starts the landscape (the model built, its bytes posted to the
+    /// workers) counts as one.
     pub(super) work_ms: Vec<f64>,
+    /// The app's own `ui` time of the frame that started the landscape, ms.
+    pub(super) start_work_ms: Option<f64>,
 }
 
 impl FrameWatch {
@@ -79,6 +83,11 @@ impl FrameWatch {
     /// ends after it is one the user waited for).
     pub fn frame(&mut self, computing: bool, status: String, cpu_s: Option<f32>) {
         let counts = computing || self.last_computing;
+        if computing && !self.last_computing && self.start_work_ms.is_none() {
+            // The frame before this one started the landscape.
+            self.start_work_ms = Some(self.last_ui_ms);
+            self.work_ms.push(self.last_ui_ms);
+        }
         self.last_computing = computing;
         let now = Instant::now();
         self.ui_start = Some(now);
