@@ -32,7 +32,7 @@ fn play_moves_the_cursor_by_real_time_loops_and_pauses() {
     let mut h = harness();
     let duration = h.state().session().model().expect("model").demos()[0].duration_s;
     let start = t(&h);
-    h.get_by_label("▶ Play").click();
+    h.get_by_label("Play").click();
     h.step();
     h.step();
     let one = t(&h);
@@ -69,7 +69,7 @@ fn without_loop_playback_stops_at_the_end() {
     h.get_by_label("loop").click();
     h.step();
     assert!(!h.state().view().playback.looping);
-    h.get_by_label("▶ Play").click();
+    h.get_by_label("Play").click();
     let duration = h.state().session().model().expect("model").demos()[0].duration_s;
     for _ in 0..(duration / DT) as usize + 4 {
         h.step();

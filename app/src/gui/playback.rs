@@ -112,7 +112,10 @@ impl Playback {
 
 /// The controls: play or pause, the speed, loop and the clock.
 pub fn controls_ui(ui: &mut egui::Ui, p: &mut Playback, d: Durations) {
-    let label = if p.playing { "⏸ Pause" } else { "▶ Play" };
+    // ASCII: a glyph egui's fonts lack (or one with an emoji presentation)
+    // is drawn in the browser through a Canvas 2D fallback, 20-50 ms the first
+    // time, in the frame that starts the landscape (web/tests/slow_frame.mjs).
+    let label = if p.playing { "Pause" } else { "Play" };
     if ui
         .button(label)
         .on_hover_text("play the motion as recorded (space bar)")
