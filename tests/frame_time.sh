@@ -8,7 +8,9 @@
 #               its plots drawn every frame)
 #   goal        the New target tab on, its goal dragged in the 3D view
 # Prints the summary the app writes with DMPSCOPE_FRAME_LOG (frame intervals
-# and egui CPU time per frame, recorded once the landscape is complete).
+# and egui CPU time per frame, recorded once the landscape is complete; on
+# Linux also the app thread's own CPU per frame and its wait for a core,
+# thread_cpu_ms and thread_wait_ms: egui's figure is wall time).
 # PINS=LIST pins those gain sets first (the app's --pin: Table I names or
 # DM:KM, comma separated), e.g. the six of issue 45's budget:
 #   PINS=extracted,pick,Hrstc1,Hrstc2,Hrstc3,Hrstc4
