@@ -135,30 +135,41 @@ try {
   await until("the take's landscape", (s) => s.landscape.total > 0 && s.landscape.done === s.landscape.total, 300000, 250);
   const names = (await readdir(hostile)).sort();
   figures.hostile_s = {};
+  // Seen later than a second after the drop (the test's polls wait for the
+  // page's frames, 150-250 ms each under SwiftShader, so this is an upper
+  // bound of the app's own time): the test fails once its figures are out.
+  const slow = [];
   for (const name of names) {
     const b64 = (await readFile(join(hostile, name))).toString("base64");
-    const seen = (await state()).messages.length;
-    const start = Date.now();
+    // The file is made in the page first, so the clock counts the drop and
+    // the app, not the test's copy of the bytes into the page.
     await page.evaluate(([b64, name]) => {
       const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+      window.__hostile = new File([bytes], name);
+    }, [b64, name]);
+    const seen = (await state()).messages.length;
+    const start = Date.now();
+    await page.evaluate(() => {
       const dt = new DataTransfer();
-      dt.items.add(new File([bytes], name));
+      dt.items.add(window.__hostile);
       const target = document.getElementById("dmpscope_canvas");
       for (const type of ["dragenter", "dragover", "drop"]) {
         target.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true }));
       }
-    }, [b64, name]);
+    });
     const s = await until(`${name} answered`, (s) => !s.loading && (s.messages.slice(seen).some((m) => m.includes(name))
       || s.raw_demos.some((d) => d.name.startsWith(name))), 20000);
     const secs = (Date.now() - start) / 1000;
     figures.hostile_s[name] = secs;
     const said = s.messages.slice(seen).find((m) => m.includes(name)) ?? "its demos";
     console.log(`${secs < 1.0 ? "ok" : "SLOW"}: ${name}: ${said.slice(0, 100)} (${secs.toFixed(2)} s)`);
+    if (secs >= 1.0) slow.push(`${name} ${secs.toFixed(2)} s`);
   }
   check(errors.length === 0, `no page errors (${errors.join("; ").slice(0, 300)})`);
   await mkdir(out, { recursive: true });
   await writeFile(join(out, "large.json"), JSON.stringify(figures, null, 2));
   console.log(JSON.stringify(figures, null, 2));
+  check(slow.length === 0, `every hostile file answered within 1 s of its drop${slow.length ? `; not: ${slow.join(", ")}` : ""}`);
 } finally {
   await context.close();
   server.close();
