@@ -108,7 +108,7 @@ impl DmpApp {
             "op": [dm, km],
             "optimum": optimum_json(session),
             "allowed": session.allowed().map(|v| &v.allowed),
-            "buttons": preset_buttons(&self.view.preset_buttons),
+            "buttons": click_targets(&self.view.click_targets),
             "landscape": landscape_progress(session),
             "landscape_points_here": crate::session::landscape::points_computed_here(),
             "workers": session.worker_stats(),
@@ -214,7 +214,7 @@ fn optimum_json(session: &Session) -> Option<serde_json::Value> {
 }
 
 /// Each preset button's rectangle (left, top, width, height) by preset name.
-fn preset_buttons(buttons: &BTreeMap<&'static str, egui::Rect>) -> BTreeMap<String, [f32; 4]> {
+fn click_targets(buttons: &BTreeMap<&'static str, egui::Rect>) -> BTreeMap<String, [f32; 4]> {
     buttons
         .iter()
         .map(|(name, r)| (name.to_string(), [r.min.x, r.min.y, r.width(), r.height()]))

@@ -94,7 +94,7 @@ pub struct ViewState {
     pub segment: SegmentSettings,
     /// Where the gain presets' buttons, the "New target" tab and its
     /// switch were drawn last frame, by name (what the browser tests click).
-    pub preset_buttons: std::collections::BTreeMap<&'static str, egui::Rect>,
+    pub click_targets: std::collections::BTreeMap<&'static str, egui::Rect>,
     /// The pinned gain sets and what they show (issue 45).
     pub pins: super::pins::Pins,
     /// The Compare section's typed gains (`DM:KM`) and its last error.
@@ -132,7 +132,7 @@ impl ViewState {
             timelines: Default::default(),
             exclude_text: String::new(),
             segment: SegmentSettings::default(),
-            preset_buttons: std::collections::BTreeMap::new(),
+            click_targets: std::collections::BTreeMap::new(),
             pins: super::pins::Pins::default(),
             pin_text: String::new(),
             pin_error: None,

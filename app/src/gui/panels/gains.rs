@@ -14,7 +14,7 @@ pub fn gains_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     ui.heading("Gains");
     k_ui(ui, s);
     operating_point_ui(ui, s);
-    snap_buttons_ui(ui, session, s, &mut cx.view.preset_buttons);
+    snap_buttons_ui(ui, session, s, &mut cx.view.click_targets);
     let Some(x) = session.extraction() else {
         no_optimum_ui(ui, session);
         return;
@@ -60,12 +60,12 @@ fn snap_buttons_ui(
     ui: &mut egui::Ui,
     session: &crate::session::Session,
     s: &mut crate::session::Settings,
-    preset_buttons: &mut std::collections::BTreeMap<&'static str, egui::Rect>,
+    click_targets: &mut std::collections::BTreeMap<&'static str, egui::Rect>,
 ) {
     ui.horizontal_wrapped(|ui| {
         for p in PAPER_PRESETS {
             let button = ui.button(p.name);
-            preset_buttons.insert(p.name, button.rect);
+            click_targets.insert(p.name, button.rect);
             if button.clicked() {
                 s.op = (p.dm, p.km);
             }

@@ -106,7 +106,7 @@ fn generalise_switch_ui(
     }
     let switch = ui.checkbox(&mut on, "Run the DMP at a new target");
     cx.view
-        .preset_buttons
+        .click_targets
         .insert("Run at a new target", switch.rect);
     if switch
         .on_hover_text(

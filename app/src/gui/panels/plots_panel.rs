@@ -23,7 +23,7 @@ pub fn plots_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         ui.selectable_value(&mut cx.view.right, RightTab::Forcing, "Forcing terms");
         ui.selectable_value(&mut cx.view.right, RightTab::TradeOff, "Trade-off");
         let tab = ui.selectable_value(&mut cx.view.right, RightTab::Generalised, "New target");
-        cx.view.preset_buttons.insert("New target", tab.rect);
+        cx.view.click_targets.insert("New target", tab.rect);
     });
     ui.separator();
     match cx.view.right {

@@ -70,7 +70,7 @@ pub(super) fn pinned(out: &mut SegmentList, frame: &Frame, input: &SceneInput<'_
                 out.path(&path, c, 1.6 * ppp, 0.0);
                 drawn += 1;
                 if i == sel
-                    && let Some(p) = at_time(&r.y.iter().map(local).collect::<Vec<_>>(), input.t)
+                    && let Some(p) = cursor(&r.y, input.t, local)
                 {
                     out.dot(p, DARK, 9.0 * ppp);
                     out.dot(p, rgba(lighter(pin.colour, 0.2), 1.0), 6.0 * ppp);
@@ -90,6 +90,16 @@ pub(super) fn pinned(out: &mut SegmentList, frame: &Frame, input: &SceneInput<'_
             drawn
         })
         .collect()
+}
+
+/// The point at unit time `t` on `points` (a unit-time grid), mapped by
+/// `local`: only the two neighbours are mapped, not the whole path.
+fn cursor(points: &[geom::Vec3], t: f64, local: impl Fn(&geom::Vec3) -> Vec3) -> Option<Vec3> {
+    let last = points.len().checked_sub(1)?;
+    let x = t.clamp(0.0, 1.0) * last as f64;
+    let i = (x.floor() as usize).min(last);
+    let pair = [local(&points[i]), local(&points[(i + 1).min(last)])];
+    at_time(&pair, x - i as f64)
 }
 
 /// A run at a new target `g`: its path, its band, its handles and its time cursor.
