@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::fit::settings::DmpSettings;
 use crate::landscape::model::Model;
+use crate::landscape::model_steps::ModelSteps;
 use crate::load::demo::RawDemo;
 use crate::notice::Notice;
 use crate::prepare::demo::{PrepSettings, PreparedDemo, prepare};
@@ -45,55 +46,184 @@ pub fn build_model<'a>(
     dmp: DmpSettings,
     unusable: Unusable,
 ) -> Result<Built> {
-    let mut prepared = Vec::new();
-    let mut used = Vec::new();
-    let mut notices = Vec::new();
-    let mut reasons = Vec::new();
-    let mut no_rotation = Vec::new();
-    for (i, raw) in demos.into_iter().enumerate() {
-        match prepare(raw, prep) {
-            Ok(p) => {
-                if raw.orientations.is_some() && p.orientation.is_none() {
-                    no_rotation.push(p.name.clone());
-                }
-                prepared.push(p);
-                used.push(i);
-            }
-            Err(e @ Error::InvalidSetting(_)) => return Err(e),
-            Err(e) if unusable == Unusable::Fail => return Err(e),
-            Err(e) => {
-                notices.push(Notice::warning(format!("left out {e}")));
-                reasons.push(e.to_string());
-            }
+    let mut steps = BuildSteps::new(demos.into_iter().collect(), *prep, dmp, unusable);
+    loop {
+        if let Some(built) = steps.step() {
+            return built;
         }
     }
-    if prepared.is_empty() {
-        return Err(Error::NoUsableDemo { reasons });
+}
+
+/// [`build_model`] in steps of one demo each (prepared, then fitted), for
+/// a caller that must not hold its thread for the whole build (the
+/// browser's page); the same model, bit for bit. `D` is a demo or a
+/// reference to one.
+#[derive(Debug)]
+pub struct BuildSteps<D> {
+    demos: Vec<D>,
+    prep: PrepSettings,
+    dmp: DmpSettings,
+    unusable: Unusable,
+    stage: BuildStage,
+}
+
+/// Where a [`BuildSteps`] is.
+#[derive(Debug)]
+enum BuildStage {
+    /// Preparing demo `next` (those before it are in `prepared`).
+    Preparing {
+        next: usize,
+        prepared: Vec<PreparedDemo>,
+        used: Vec<usize>,
+        notices: Vec<Notice>,
+        reasons: Vec<String>,
+        no_rotation: Vec<String>,
+    },
+    /// Fitting.
+    Fitting {
+        steps: ModelSteps,
+        used: Vec<usize>,
+        notices: Vec<Notice>,
+    },
+    /// Over (its result was handed out).
+    Over,
+}
+
+impl<D: std::borrow::Borrow<RawDemo>> BuildSteps<D> {
+    /// The build of `demos`' model (nothing done yet).
+    pub fn new(demos: Vec<D>, prep: PrepSettings, dmp: DmpSettings, unusable: Unusable) -> Self {
+        Self {
+            demos,
+            prep,
+            dmp,
+            unusable,
+            stage: BuildStage::Preparing {
+                next: 0,
+                prepared: Vec::new(),
+                used: Vec::new(),
+                notices: Vec::new(),
+                reasons: Vec::new(),
+                no_rotation: Vec::new(),
+            },
+        }
     }
-    notices.extend(prepared.iter().filter_map(|p| short_window(p, prep)));
-    notices.extend(noisy(&prepared));
-    if let Some(first) = no_rotation.first() {
-        let which = match no_rotation.len() {
-            1 => first.clone(),
-            n => format!("{n} demos ({first}, ...)"),
-        };
-        notices.push(Notice::info(format!(
-            "{which}: the orientation is the same throughout while the position moves (a \
-             tracker that sends no rotation): no orientation DMP for them, and the \
-             orientation views are off (docs/method.md section 12)"
-        )));
+
+    /// Does one step (a demo prepared, or a demo fitted); the result once
+    /// the build is over (then `None` again).
+    pub fn step(&mut self) -> Option<Result<Built>> {
+        match std::mem::replace(&mut self.stage, BuildStage::Over) {
+            BuildStage::Preparing {
+                next,
+                mut prepared,
+                mut used,
+                mut notices,
+                mut reasons,
+                mut no_rotation,
+            } => {
+                let Some(raw) = self.demos.get(next).map(std::borrow::Borrow::borrow) else {
+                    return self.start_fit(prepared, used, notices, reasons, &no_rotation);
+                };
+                match prepare(raw, &self.prep) {
+                    Ok(p) => {
+                        if raw.orientations.is_some() && p.orientation.is_none() {
+                            no_rotation.push(p.name.clone());
+                        }
+                        prepared.push(p);
+                        used.push(next);
+                    }
+                    Err(e @ Error::InvalidSetting(_)) => return Some(Err(e)),
+                    Err(e) if self.unusable == Unusable::Fail => return Some(Err(e)),
+                    Err(e) => {
+                        notices.push(Notice::warning(format!("left out {e}")));
+                        reasons.push(e.to_string());
+                    }
+                }
+                self.stage = BuildStage::Preparing {
+                    next: next + 1,
+                    prepared,
+                    used,
+                    notices,
+                    reasons,
+                    no_rotation,
+                };
+                None
+            }
+            BuildStage::Fitting {
+                mut steps,
+                used,
+                notices,
+            } => {
+                if steps.project_next() {
+                    self.stage = BuildStage::Fitting {
+                        steps,
+                        used,
+                        notices,
+                    };
+                    return None;
+                }
+                Some(steps.finish().map(|model| Built {
+                    model,
+                    used,
+                    notices,
+                }))
+            }
+            BuildStage::Over => None,
+        }
     }
-    if prepared.len() == 1 {
-        notices.push(Notice::info(
-            "only one demonstration: S needs two or more and is 0 here",
-        ));
+
+    /// Demos prepared or fitted, of twice their number.
+    pub fn progress(&self) -> (usize, usize) {
+        let n = self.demos.len();
+        match &self.stage {
+            BuildStage::Preparing { next, .. } => (*next, 2 * n),
+            BuildStage::Fitting { steps, .. } => (n + steps.progress().0, 2 * n),
+            BuildStage::Over => (2 * n, 2 * n),
+        }
     }
-    let model = Model::new(prepared, dmp)?;
-    Ok(Built {
-        model,
-        used,
-        notices,
-    })
+
+    /// Every demo prepared: the notices on them, and the fit's start.
+    fn start_fit(
+        &mut self,
+        prepared: Vec<PreparedDemo>,
+        used: Vec<usize>,
+        mut notices: Vec<Notice>,
+        reasons: Vec<String>,
+        no_rotation: &[String],
+    ) -> Option<Result<Built>> {
+        if prepared.is_empty() {
+            return Some(Err(Error::NoUsableDemo { reasons }));
+        }
+        let prep = &self.prep;
+        notices.extend(prepared.iter().filter_map(|p| short_window(p, prep)));
+        notices.extend(noisy(&prepared));
+        if let Some(first) = no_rotation.first() {
+            let which = match no_rotation.len() {
+                1 => first.clone(),
+                n => format!("{n} demos ({first}, ...)"),
+            };
+            notices.push(Notice::info(format!(
+                "{which}: the orientation is the same throughout while the position moves (a \
+                 tracker that sends no rotation): no orientation DMP for them, and the \
+                 orientation views are off (docs/method.md section 12)"
+            )));
+        }
+        if prepared.len() == 1 {
+            notices.push(Notice::info(
+                "only one demonstration: S needs two or more and is 0 here",
+            ));
+        }
+        match ModelSteps::new(prepared, self.dmp) {
+            Ok(steps) => {
+                self.stage = BuildStage::Fitting {
+                    steps,
+                    used,
+                    notices,
+                };
+                None
+            }
+            Err(e) => Some(Err(e)),
+        }
+    }
 }
 
 /// The model's settings as the CLI's flags name them (`--sg-window`,

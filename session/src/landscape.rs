@@ -14,6 +14,7 @@ use dmpscope_core::{Model, Result};
 
 use crate::jobs::{Clock, Runner, Step, Work};
 use crate::pooled::PoolFill;
+use crate::workers::Workers;
 
 /// Points per step natively (all cores per step).
 const TILE: usize = 1024;
@@ -60,6 +61,12 @@ pub struct LandscapeWork {
 
 /// Where the points are computed.
 enum Engine {
+    /// Not yet started: the executor's workers are given the model at the
+    /// work's first step, not when the work is made (in the browser the
+    /// work is made inside a frame and steps between frames, so the
+    /// model's encoding and its posting to the workers, about 10 ms of the
+    /// page's thread, stay out of the frame).
+    Start(Arc<dyn Workers>, Arc<Model>, Grid),
     /// By this work itself (natively: on all cores).
     Here(LandscapeJob),
     /// In the executor's workers; this work only moves tiles.
@@ -81,12 +88,9 @@ impl LandscapeWork {
     pub fn new(model: Arc<Model>, grid: Grid, runner: &Runner) -> Result<Self> {
         let clock = runner.clock();
         let started = clock.now();
-        let pooled = match runner.workers() {
-            Some(workers) => PoolFill::start(&workers, &model, grid, clock.clone())?,
-            None => None,
-        };
-        let engine = match pooled {
-            Some(fill) => Engine::Workers(fill),
+        grid.validate()?;
+        let engine = match runner.workers() {
+            Some(workers) => Engine::Start(workers, model, grid),
             None => Engine::Here(LandscapeJob::new(model, grid, FillOrder::CoarseToFine)?),
         };
         Ok(Self {
@@ -100,8 +104,33 @@ impl LandscapeWork {
         })
     }
 
+    /// Gives the workers the model (or, where the pool has no worker or
+    /// cannot start, computes here).
+    fn start(&mut self) -> Result<()> {
+        let Engine::Start(workers, model, grid) = &self.engine else {
+            return Ok(());
+        };
+        let (model, grid) = (Arc::clone(model), *grid);
+        self.engine = match PoolFill::start(workers, &model, grid, self.clock.clone()) {
+            Ok(Some(fill)) => Engine::Workers(fill),
+            Ok(None) | Err(_) => {
+                Engine::Here(LandscapeJob::new(model, grid, FillOrder::CoarseToFine)?)
+            }
+        };
+        Ok(())
+    }
+
     fn snapshot(&self) -> Snapshot {
         let ((done, total), landscape) = match &self.engine {
+            Engine::Start(_, model, grid) => {
+                let blank = Landscape::for_model(*grid, model);
+                return Snapshot {
+                    done: 0,
+                    total: blank.grid.len(),
+                    landscape: blank,
+                    elapsed: self.clock.now().saturating_sub(self.started),
+                };
+            }
             Engine::Here(job) => (job.progress(), job.landscape()),
             Engine::Workers(fill) => (fill.progress(), fill.landscape()),
         };
@@ -118,8 +147,15 @@ impl Work for LandscapeWork {
     type Output = Snapshot;
 
     fn step(&mut self) -> Step<Snapshot> {
+        if self.start().is_err() {
+            // Not reached: `new` checked the grid, the only thing a start
+            // refuses. The landscape stays blank (the window says it
+            // cannot be computed).
+            return Step::Done(self.snapshot());
+        }
         let start = self.clock.now();
         let done = match &mut self.engine {
+            Engine::Start(..) => return Step::Working,
             Engine::Here(job) => {
                 let before = job.progress().0;
                 // Natively a step uses every core (rayon) even off a thread

@@ -8,6 +8,7 @@ pub mod generalise;
 pub mod jobs;
 pub mod landscape;
 pub mod messages;
+mod model_work;
 pub mod pooled;
 pub mod rl;
 pub mod rl_board;

@@ -41,6 +41,8 @@ pub struct Session {
     pub(crate) excluded: BTreeSet<(usize, String)>,
     pub(crate) messages: Messages,
     pub(crate) model: Stage<ModelKey, Built>,
+    /// The model's build where it runs as a job (not natively).
+    pub(crate) model_job: Stage<ModelKey, crate::model_work::ModelOutcome>,
     pub(crate) landscape: Stage<LandscapeKey, Snapshot>,
     /// The landscape's latest snapshot as the heat maps show it.
     pub(crate) shown: Option<Shown>,
@@ -64,6 +66,11 @@ pub struct Session {
     pub(crate) rl_request: Option<RlRequest>,
     pub(crate) runs: StageRuns,
     pub(crate) counter: u64,
+    /// Whether the landscape waits for a frame that has shown its model
+    /// ([`Session::pace_by_frames`]).
+    pub(crate) paced: bool,
+    /// The model version the last finished frame showed.
+    pub(crate) model_shown: Option<u64>,
 }
 
 impl Session {
@@ -77,6 +84,7 @@ impl Session {
             excluded: BTreeSet::new(),
             messages: Messages::default(),
             model: Stage::default(),
+            model_job: Stage::default(),
             landscape: Stage::default(),
             shown: None,
             extraction: Stage::default(),
@@ -93,7 +101,37 @@ impl Session {
             rl_request: None,
             runs: StageRuns::default(),
             counter: 0,
+            paced: false,
+            model_shown: None,
         }
+    }
+
+    /// Starts the landscape of a new model only once a frame has shown
+    /// that model ([`Session::frame_shown`]), not in the frame that first
+    /// draws it. For the browser: the first layout of a new model (its
+    /// plots, 3D paths and table: 15-25 ms of the page's thread) and the
+    /// start of the workers then fall in different frames, and that layout
+    /// is not slowed by workers computing beside it on a 2-core machine.
+    /// The landscape starts one frame later. Off by default (natively the
+    /// landscape runs on threads of its own).
+    pub fn pace_by_frames(&mut self, on: bool) {
+        self.paced = on;
+    }
+
+    /// Tells the session that a frame has been drawn, showing the model of
+    /// version `model` ([`Session::model_version`] when its panels were
+    /// laid out; see [`Session::pace_by_frames`]); `true` when the
+    /// landscape waits for the next frame, so the caller should ask for it.
+    #[must_use]
+    pub fn frame_shown(&mut self, model: Option<u64>) -> bool {
+        self.model_shown = model;
+        // Waiting, its stage was cleared: the next update starts it.
+        self.paced && self.model_version().is_some() && self.landscape.key().is_none()
+    }
+
+    /// Whether the landscape waits for a frame to show its model first.
+    pub(crate) fn landscape_waits(&self) -> bool {
+        self.paced && self.model_version().is_some() && self.model_version() != self.model_shown
     }
 
     pub(crate) fn next_id(&mut self) -> u64 {
@@ -418,6 +456,7 @@ impl Session {
     pub fn busy(&self) -> bool {
         self.loading()
             || self.landscape_running()
+            || self.landscape_waits()
             || self.extracting()
             || self.diagnosing()
             || self.rl.running()
@@ -484,8 +523,9 @@ fn status_of(session: &Session) -> Status {
         Status::Cancelled(done, total)
     } else if session.landscape_failed() {
         Status::Stopped(done, total)
-    } else if session.model().is_none() {
-        // Not built yet: the first update has not run.
+    } else if session.model().is_none() || (session.paced && session.landscape.key().is_none()) {
+        // Not built yet (the first update has not run), or the landscape
+        // starts at the next update (`Session::pace_by_frames`).
         Status::Computing(0, 0)
     } else {
         Status::NoLandscape

@@ -8,11 +8,12 @@ use std::sync::{Arc, OnceLock};
 use dmpscope_core::arrange::streams::unique_names;
 use dmpscope_core::extract::optimum::constrained;
 use dmpscope_core::report::presets::PAPER_PRESETS;
-use dmpscope_core::{Level, Model, RawDemo, Unusable, build_model, extract};
+use dmpscope_core::{Level, Model, RawDemo, extract};
 
 use crate::diagnostics::DiagnosticsWork;
-use crate::jobs::Once;
+use crate::jobs::{Once, Step, Work};
 use crate::landscape::{LandscapeWork, Shown};
+use crate::model_work::{ModelOutcome, ModelWork};
 use crate::rl::RlWork;
 use crate::rl_request::RlRequest;
 use crate::session::Session;
@@ -66,6 +67,7 @@ impl Session {
     pub(crate) fn update_model(&mut self, settings: &Settings) {
         if self.demos.is_empty() {
             self.model.clear();
+            self.model_job.clear();
             return;
         }
         let key = ModelKey {
@@ -74,28 +76,58 @@ impl Session {
             prep: settings.prep,
             dmp: settings.dmp,
         };
-        let (demos, messages) = (&self.demos, &mut self.messages);
-        let built = self.model.ensure_now(key, |key| {
+        if self.model.is_for(&key) {
+            return;
+        }
+        let demos = &self.demos;
+        let work = || {
             let chosen: Vec<usize> = (0..demos.len()).filter(|&i| demos[i].included).collect();
-            let raws = chosen.iter().map(|&i| &demos[i].raw);
-            match build_model(raws, &key.prep, key.dmp, Unusable::Skip) {
-                Ok(b) => {
-                    messages.extend(b.notices);
-                    let used = b.used.iter().map(|&i| chosen[i]).collect();
-                    Ok(Built {
-                        model: Arc::new(b.model),
-                        used,
-                    })
+            let raws = chosen.iter().map(|&i| demos[i].raw.clone()).collect();
+            ModelWork::new(raws, chosen, key.prep, key.dmp)
+        };
+        if self.runner.threaded() {
+            // Natively at once (milliseconds): no frame goes without a model.
+            let mut work = work();
+            let outcome = loop {
+                if let Step::Done(outcome) = work.step() {
+                    break outcome;
                 }
-                Err(e) => {
-                    let text = if chosen.is_empty() {
-                        "no demonstration is included: tick one in Demos".to_owned()
-                    } else {
-                        e.to_string()
-                    };
-                    messages.say(Level::Warning, text.clone());
-                    Err(text)
+            };
+            self.set_model(key, outcome);
+            return;
+        }
+        // Elsewhere a job of a demo per step: in the browser, slices
+        // between frames (tests: at once, at the first poll).
+        let runner = &self.runner;
+        self.model_job
+            .ensure_job(key.clone(), || Ok(runner.start("the model", work())));
+        // The model of other demos or settings is gone meanwhile.
+        self.model.clear();
+        match self.model_job.poll() {
+            Polled::Value => {
+                if let Some(outcome) = self.model_job.take_value() {
+                    self.set_model(key, outcome);
                 }
+            }
+            Polled::Failed(e) => self.set_model(key, Err(format!("the model: {e}"))),
+            Polled::Nothing => {}
+        }
+    }
+
+    /// Makes `outcome` the model for `key`, its notices the messages'.
+    fn set_model(&mut self, key: ModelKey, outcome: ModelOutcome) {
+        let messages = &mut self.messages;
+        let built = self.model.ensure_now(key, |_| match outcome {
+            Ok((mut built, used)) => {
+                messages.extend(std::mem::take(&mut built.notices));
+                Ok(Built {
+                    model: Arc::new(built.model),
+                    used,
+                })
+            }
+            Err(text) => {
+                messages.say(Level::Warning, text.clone());
+                Err(text)
             }
         });
         self.runs.models += usize::from(built);
@@ -111,6 +143,13 @@ impl Session {
             model: version,
             grid: settings.grid,
         };
+        if self.landscape_waits() && !self.landscape.is_for(&key) {
+            // Starts at the next frame (see `Session::pace_by_frames`);
+            // the landscape of an older model is gone meanwhile.
+            self.landscape.clear();
+            self.shown = None;
+            return;
+        }
         let (runner, messages) = (&self.runner, &mut self.messages);
         if self.landscape.ensure_job(key, || {
             LandscapeWork::new(model, settings.grid, runner)

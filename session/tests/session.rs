@@ -350,3 +350,57 @@ fn a_new_target_recomputes_only_the_generalised_run() {
     step(&mut session, &settings);
     assert!(session.generalised().is_none());
 }
+
+#[test]
+fn paced_by_frames_the_landscape_starts_a_frame_after_its_model_is_shown() {
+    let settings = Settings::default();
+    let mut session = Session::new(Runner::inline());
+    session.pace_by_frames(true);
+    session.apply(Command::AddSources(vec![Source::planted_sample()]));
+    session.update(&settings);
+    // The model is built (a job of a demo per step: at once, inline); its
+    // landscape waits for a frame that shows it.
+    let version = session.model_version();
+    assert!(version.is_some(), "the model is built");
+    assert_eq!(session.runs().landscapes, 0);
+    assert!(!session.landscape_running() && session.shown().is_none());
+    assert_eq!(
+        session.status(),
+        Status::Computing(0, 0),
+        "it says it computes"
+    );
+    assert!(session.busy());
+    // A frame that drew no model, or another one, does not start it.
+    assert!(
+        session.frame_shown(None),
+        "the caller asks for the next frame"
+    );
+    session.update(&settings);
+    assert_eq!(session.runs().landscapes, 0);
+    // The frame that drew it does.
+    assert!(session.frame_shown(version));
+    session.update(&settings);
+    assert_eq!(session.runs().landscapes, 1);
+    assert!(
+        session.landscape_complete(),
+        "inline, the landscape is done"
+    );
+    assert!(!session.frame_shown(version), "nothing waits any more");
+    // A new model's landscape waits again, and the old one is not shown.
+    let mut refit = settings.clone();
+    refit.dmp.basis_functions += 5;
+    session.update(&refit);
+    assert_ne!(session.model_version(), version);
+    assert!(session.shown().is_none(), "no landscape of the old model");
+    assert_eq!(session.runs().landscapes, 1);
+    assert!(session.frame_shown(session.model_version()));
+    session.update(&refit);
+    assert_eq!(session.runs().landscapes, 2);
+}
+
+#[test]
+fn without_pacing_the_landscape_starts_with_its_model() {
+    let session = a_ready_sample_session(&Settings::default());
+    assert_eq!(session.runs().landscapes, 1);
+    assert!(session.landscape_complete());
+}

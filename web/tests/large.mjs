@@ -66,6 +66,23 @@ const profile = await mkdtemp(join(tmpdir(), "dmpscope-chromium-"));
 const context = await launch(profile);
 try {
   const page = context.pages()[0] ?? (await context.newPage());
+  // The page's clock for the hostile files: after each animation-frame
+  // callback (the app's frame), whether its state answers the file the
+  // test dropped last (`window.__watch`): a message naming it, or its
+  // demos, with nothing loading. The first such frame's end is the answer.
+  await page.addInitScript(() => {
+    const raf = window.requestAnimationFrame.bind(window);
+    window.requestAnimationFrame = (cb) => raf((ts) => {
+      cb(ts);
+      const w = window.__watch;
+      if (!w || w.at !== undefined || !window.dmpscope_state) return;
+      const raw = window.dmpscope_state();
+      if (!raw.includes(w.name)) return;
+      const s = JSON.parse(raw);
+      if (!s.loading && (s.messages.slice(w.seen).some((m) => m.includes(w.name))
+        || s.raw_demos.some((d) => d.name.startsWith(w.name)))) w.at = performance.now();
+    });
+  });
   const errors = [];
   page.on("pageerror", (e) => errors.push(String(e)));
   const state = () => page.evaluate(() => (window.dmpscope_state ? JSON.parse(window.dmpscope_state()) : null));
@@ -135,9 +152,8 @@ try {
   await until("the take's landscape", (s) => s.landscape.total > 0 && s.landscape.done === s.landscape.total, 300000, 250);
   const names = (await readdir(hostile)).sort();
   figures.hostile_s = {};
-  // Seen later than a second after the drop (the test's polls wait for the
-  // page's frames, 150-250 ms each under SwiftShader, so this is an upper
-  // bound of the app's own time): the test fails once its figures are out.
+  // Answered later than a second after the drop on the page's clock: the
+  // test fails.
   const slow = [];
   for (const name of names) {
     const b64 = (await readFile(join(hostile, name))).toString("base64");
@@ -149,21 +165,28 @@ try {
     }, [b64, name]);
     const seen = (await state()).messages.length;
     const start = Date.now();
-    await page.evaluate(() => {
+    await page.evaluate(([name, seen]) => {
+      window.__watch = { name, seen, dropped: performance.now() };
       const dt = new DataTransfer();
       dt.items.add(window.__hostile);
       const target = document.getElementById("dmpscope_canvas");
       for (const type of ["dragenter", "dragover", "drop"]) {
         target.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true }));
       }
-    });
+    }, [name, seen]);
     const s = await until(`${name} answered`, (s) => !s.loading && (s.messages.slice(seen).some((m) => m.includes(name))
       || s.raw_demos.some((d) => d.name.startsWith(name))), 20000);
-    const secs = (Date.now() - start) / 1000;
+    const polled = (Date.now() - start) / 1000;
+    // The page's clock: from the drop to the end of the frame that
+    // answered (the test's own polls wait for the page's frames, 150-250 ms
+    // each under SwiftShader, so `polled` is an upper bound).
+    const secs = await page.evaluate(() => (window.__watch.at - window.__watch.dropped) / 1000);
     figures.hostile_s[name] = secs;
+    figures.hostile_polled_s ??= {};
+    figures.hostile_polled_s[name] = polled;
     const said = s.messages.slice(seen).find((m) => m.includes(name)) ?? "its demos";
-    console.log(`${secs < 1.0 ? "ok" : "SLOW"}: ${name}: ${said.slice(0, 100)} (${secs.toFixed(2)} s)`);
-    if (secs >= 1.0) slow.push(`${name} ${secs.toFixed(2)} s`);
+    console.log(`${secs < 1.0 ? "ok" : "SLOW"}: ${name}: ${said.slice(0, 100)} (${secs.toFixed(2)} s; the test's polls saw it at ${polled.toFixed(2)} s)`);
+    if (!(secs < 1.0)) slow.push(`${name} ${secs.toFixed(2)} s`);
   }
   check(errors.length === 0, `no page errors (${errors.join("; ").slice(0, 300)})`);
   await mkdir(out, { recursive: true });

@@ -13,7 +13,9 @@
 // Usage: web/build.sh --testing && (cd web/tests && node slow_frame.mjs)
 // HIDE=mask leaves parts of the window out from the first frame
 // (window.dmpscope_hide's bits, app/src/gui/app.rs `part`); JSFLAGS passes
-// V8 flags (e.g. --no-wasm-lazy-compilation); DEPTH sets the stacks' depth.
+// V8 flags (e.g. --no-wasm-lazy-compilation); DEPTH sets the stacks' depth;
+// INCL=pattern lists the functions matching it by total time; SLOW_MS sets
+// the callbacks looked into (over 100 ms).
 import { serve, launch } from "./serve.mjs";
 import { mkdtemp, rm } from "node:fs/promises";
 import { tmpdir } from "node:os";
@@ -30,7 +32,7 @@ try {
   // Every WebGL2 call over 3 ms, and every animation-frame callback over
   // 100 ms, each followed by a call of __SLOW_MARK, a 3 ms busy wait the
   // profile shows by name: the anchor of that callback's window.
-  await page.addInitScript(() => {
+  await page.addInitScript((SLOW_MS) => {
     window.__gl_slow = [];
     window.__slow_frames = [];
     const proto = WebGL2RenderingContext.prototype;
@@ -55,12 +57,12 @@ try {
       const t = performance.now();
       cb(ts);
       const dt = performance.now() - t;
-      if (dt > 100) {
+      if (dt > SLOW_MS) {
         window.__slow_frames.push([t, dt]);
         window.__SLOW_MARK();
       }
     });
-  });
+  }, Number(process.env.SLOW_MS ?? 100));
 
   const cdp = await context.newCDPSession(page);
   await cdp.send("Profiler.enable");
@@ -132,6 +134,7 @@ try {
     const start = end - wall * 1000;
     const self = new Map();
     const stacks = new Map();
+    const incl = new Map();
     let n = 0;
     for (let i = 0; i < profile.samples.length; i++) {
       if (times[i] < start || times[i] >= end) continue;
@@ -140,6 +143,7 @@ try {
       self.set(name(id), (self.get(name(id)) ?? 0) + 1);
       const stack = [];
       for (let x = id; x !== undefined; x = parent.get(x)) stack.push(name(x));
+      for (const fn of new Set(stack)) incl.set(fn, (incl.get(fn) ?? 0) + 1);
       const key = stack.reverse()
         .filter((fn) => fn !== "(root)" && !fn.startsWith("wasm_bindgen"))
         .slice(0, Number(process.env.DEPTH ?? 12)).join(" > ");
@@ -148,6 +152,13 @@ try {
     console.log(`  samples inside it: ${ms(n).toFixed(1)} ms of ${wall.toFixed(1)} ms wall (at the profiler's nominal 0.2 ms a sample; the trace's thread time below is the CPU it got)`);
     console.log("  by self time:");
     for (const [k, v] of top(self, 12)) console.log(`    ${ms(v).toFixed(1).padStart(6)} ms  ${k.slice(0, 140)}`);
+    // INCL: a pattern; the functions matching it by total time (their
+    // callees included).
+    if (process.env.INCL) {
+      const re = new RegExp(process.env.INCL);
+      console.log(`  by total time (${process.env.INCL}):`);
+      for (const [k, v] of top(new Map([...incl].filter(([k]) => re.test(k))), 40)) console.log(`    ${ms(v).toFixed(1).padStart(6)} ms  ${k.slice(0, 140)}`);
+    }
     console.log("  by stack (innermost frames shown):");
     for (const [k, v] of top(stacks, 6)) console.log(`    ${ms(v).toFixed(1).padStart(6)} ms  ${k.slice(-240)}`);
   });

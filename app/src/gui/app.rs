@@ -73,6 +73,9 @@ impl DmpApp {
             sources
         };
         let mut session = Session::new(runner);
+        // In the browser a new model's first layout and the landscape's
+        // start (the workers' model) fall in different frames.
+        session.pace_by_frames(cfg!(target_arch = "wasm32"));
         session.apply(session::Command::AddSources(sources));
         session.update(&settings);
         Self {
@@ -376,6 +379,9 @@ impl eframe::App for DmpApp {
         let left_out = self.left_out(&ctx);
         if left_out & (1 << part::EVERYTHING) != 0 {
             ui.label(format!("frame {}", ctx.cumulative_frame_nr()));
+            if self.session.frame_shown(self.session.model_version()) {
+                ctx.request_repaint();
+            }
             return;
         }
         let played = self.play(&ctx);
@@ -388,7 +394,10 @@ impl eframe::App for DmpApp {
             self.session.generalise_spec(),
         );
         let before = self.settings.clone();
+        let drawn = self.session.model_version();
         let commands = self.panels_ui(ui, left_out);
+        #[cfg(feature = "testing")]
+        self.frame_watch.model_drawn(drawn);
         self.after_play(played);
         let hover_moved = self.view.end_hover();
         let changed = !commands.is_empty() || self.settings != before;
@@ -400,6 +409,9 @@ impl eframe::App for DmpApp {
         }
         if changed {
             self.session.update(&self.settings);
+            ctx.request_repaint();
+        }
+        if self.session.frame_shown(drawn) {
             ctx.request_repaint();
         }
         #[cfg(feature = "testing")]

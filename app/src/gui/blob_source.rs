@@ -29,8 +29,8 @@ impl std::fmt::Debug for BlobFile {
     }
 }
 
-/// The source of a browser's `File`; `wake` asks for a frame when bytes
-/// arrive and when the load ends.
+/// The source of a browser's `File`; `wake` asks for a frame as bytes
+/// arrive (every 8 reads: the progress line).
 pub fn source_of_file(file: web_sys::File, wake: Arc<dyn Fn() + Send + Sync>) -> Source {
     let name = file.name();
     let size = file.size() as u64;
@@ -53,8 +53,12 @@ impl RemoteLoad for BlobFile {
         let (name, wake) = (self.name.clone(), Arc::clone(&self.wake));
         wasm_bindgen_futures::spawn_local(async move {
             let result = load(&name, &file, options, meter, &*wake).await;
+            // No frame asked for here: the session's load job takes the
+            // result at its next slice (a few ms on) and asks for the frame
+            // that shows it; a frame asked for now would come first and,
+            // under a software rasteriser, hold the page's thread for
+            // 150-250 ms before that slice runs (`hostile_probe.mjs`).
             *out.lock().unwrap_or_else(PoisonError::into_inner) = Some(result);
-            wake();
         });
         slot
     }
@@ -87,7 +91,7 @@ async fn load(
                 "{name}: the reader stopped without asking for bytes"
             ));
         };
-        let answer = match ahead.answer(offset, len) {
+        let answer = match ahead.answer(offset, len, size) {
             Some(bytes) => Ok(bytes),
             None => {
                 reads += 1;
@@ -109,6 +113,10 @@ async fn load(
 /// small reads (a record's head, a footer) are served from one larger one.
 const AHEAD: usize = 4 << 20;
 
+/// A file up to this size is fetched whole at its first read (a hostile
+/// file's footer, summary and chunks then cost one wait, not five).
+const WHOLE: u64 = 16 << 20;
+
 /// The bytes last fetched, to answer the reads that fall inside them.
 #[derive(Default)]
 struct ReadAhead {
@@ -117,15 +125,25 @@ struct ReadAhead {
 }
 
 impl ReadAhead {
-    /// The answer to a read inside the bytes fetched last.
-    fn answer(&self, offset: u64, len: usize) -> Option<Vec<u8>> {
+    /// The answer to a read inside the bytes fetched last (fewer at the
+    /// file's end, as [`read_slice`] answers, when they reach it).
+    fn answer(&self, offset: u64, len: usize, size: u64) -> Option<Vec<u8>> {
         let from = usize::try_from(offset.checked_sub(self.start)?).ok()?;
         let to = from.checked_add(len)?;
+        let end = self.bytes.len();
+        if self.start + end as u64 == size {
+            // The window reaches the file's end: a read past it gets what
+            // there is.
+            return Some(self.bytes[from.min(end)..to.min(end)].to_vec());
+        }
         self.bytes.get(from..to).map(<[u8]>::to_vec)
     }
 
-    /// Fetches at least [`AHEAD`] bytes from `offset` (fewer at the file's
-    /// end) and answers the read from them.
+    /// Fetches at least [`AHEAD`] bytes around `offset` and answers the
+    /// read from them: from `offset` on, or the file's last [`AHEAD`]
+    /// bytes where the read is among them (a reader reads an MCAP's footer
+    /// and summary, then its start); a file of at most [`WHOLE`] bytes
+    /// whole.
     async fn fetch(
         &mut self,
         file: &web_sys::File,
@@ -133,11 +151,19 @@ impl ReadAhead {
         len: usize,
         size: u64,
     ) -> Result<Vec<u8>, String> {
-        let bytes = read_slice(file, offset, len.max(AHEAD), size).await?;
-        let answer = bytes[..len.min(bytes.len())].to_vec();
-        self.start = offset;
+        // A small file comes whole: each read waits for the page's event
+        // loop, which under a software rasteriser is a frame.
+        let want = if size <= WHOLE {
+            WHOLE as usize
+        } else {
+            len.max(AHEAD)
+        };
+        let start = offset.min(size.saturating_sub(want as u64));
+        let bytes = read_slice(file, start, want, size).await?;
+        self.start = start;
         self.bytes = bytes;
-        Ok(answer)
+        self.answer(offset, len, size)
+            .ok_or_else(|| format!("the browser gave too few bytes at offset {offset}"))
     }
 }
 

@@ -12,6 +12,7 @@
 mod app;
 #[cfg(target_arch = "wasm32")]
 mod blob_source;
+mod busy;
 mod cached_lines;
 mod commands;
 mod export;

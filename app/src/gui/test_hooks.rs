@@ -73,6 +73,14 @@ pub struct FrameWatch {
     pub(super) work_ms: Vec<f64>,
     /// The app's own `ui` time of the frame that started the landscape, ms.
     pub(super) start_work_ms: Option<f64>,
+    /// The model version the last frame drew.
+    pub(super) model_drawn: Option<u64>,
+    /// Whether this frame is the first to draw its model.
+    pub(super) new_model: bool,
+    /// The app's own `ui` time of each frame that first drew a model (the
+    /// first 100), ms: a new model's first layout (in the browser the
+    /// landscape starts in the frame after it).
+    pub(super) model_work_ms: Vec<f64>,
 }
 
 impl FrameWatch {
@@ -124,10 +132,19 @@ impl FrameWatch {
         }
     }
 
+    /// Records the model version this frame drew.
+    pub fn model_drawn(&mut self, version: Option<u64>) {
+        self.new_model = version.is_some() && version != self.model_drawn;
+        self.model_drawn = version;
+    }
+
     /// Records the end of this frame's `ui`.
     pub fn ui_done(&mut self) {
         if let Some(start) = self.ui_start.take() {
             self.last_ui_ms = start.elapsed().as_secs_f64() * 1e3;
+            if std::mem::take(&mut self.new_model) && self.model_work_ms.len() < 100 {
+                self.model_work_ms.push(self.last_ui_ms);
+            }
             if self.last_computing && self.work_ms.len() < 5000 {
                 self.work_ms.push(self.last_ui_ms);
             }

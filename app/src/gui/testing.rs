@@ -134,6 +134,7 @@ impl DmpApp {
             "wasm_memory_bytes": wasm_memory_bytes(),
             "page_frame_work_ms": self.frame_watch.work_ms,
             "page_frame_work_start_ms": self.frame_watch.start_work_ms,
+            "page_frame_model_ms": self.frame_watch.model_work_ms,
             "pins": self.view.pins.list().iter().zip(self.pin_paths_drawn()).map(|(p, paths)| serde_json::json!({
                 "name": p.name,
                 "dm": p.dm,

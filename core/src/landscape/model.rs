@@ -22,6 +22,7 @@ use crate::kernels::position::{DemoKernel, integrate};
 use crate::kernels::similarity::Similarity;
 use crate::kernels::skill::SkillKernel;
 use crate::kernels::skill_error;
+use crate::landscape::model_steps::ModelSteps;
 use crate::landscape::orientation_point;
 use crate::landscape::quantity;
 use crate::landscape::quantity::{PointValues, Quantity};
@@ -124,38 +125,28 @@ pub fn zeta(dm: f64, km: f64) -> f64 {
 impl Model {
     /// Fits the model. All demos must share one grid length.
     pub fn new(demos: Vec<PreparedDemo>, settings: DmpSettings) -> Result<Self> {
-        let Some(first) = demos.first() else {
-            return Err(Error::InvalidSetting("no demonstrations to fit".into()));
-        };
-        let n = first.len();
-        if let Some(other) = demos.iter().find(|d| d.len() != n) {
-            return Err(Error::InvalidSetting(format!(
-                "{} has {} grid points, {} has {n}",
-                other.name,
-                other.len(),
-                first.name
-            )));
-        }
-        let floor = settings.axis_sd_floor;
-        if !(0.0..=1.0).contains(&floor) {
-            return Err(Error::InvalidSetting(format!(
-                "the axis SD floor must be a fraction in [0, 1], got {floor}"
-            )));
-        }
-        let basis = Basis::new(&settings, n)?;
-        let projections: Vec<Projections> =
-            demos.iter().map(|d| Projections::new(&basis, d)).collect();
-        let similarity = Similarity::new(&demos, floor);
+        let mut steps = ModelSteps::new(demos, settings)?;
+        while steps.project_next() {}
+        steps.finish()
+    }
+
+    /// The model from its demos, settings, basis and each demo's
+    /// projections ([`ModelSteps::finish`]): the gain-independent rest
+    /// (`S`'s centred parts, the kernels, the skill's run).
+    pub(super) fn assemble(
+        demos: Vec<PreparedDemo>,
+        settings: DmpSettings,
+        basis: Basis,
+        projections: Vec<Projections>,
+        orientation: Vec<Option<Projections>>,
+    ) -> Result<Self> {
+        let similarity = Similarity::new(&demos, settings.axis_sd_floor);
         let kernels = demos
             .iter()
             .zip(&projections)
             .map(|(d, p)| DemoKernel::new(d, p))
             .collect();
         let skill = skill_error::kernels(&demos, &projections, settings.skill_mode);
-        let orientation: Vec<Option<Projections>> = demos
-            .iter()
-            .map(|d| d.orientation.as_ref().map(|o| o.projections(&basis)))
-            .collect();
         let rot_kernels: Vec<Option<RotKernel>> = demos
             .iter()
             .zip(&orientation)

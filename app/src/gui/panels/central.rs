@@ -94,7 +94,7 @@ fn status(ui: &mut egui::Ui, status: &Status, height: f32) {
             // While loading the top bar shows the bytes read; a spinner
             // here would ask for a frame each frame.
             if matches!(status, Status::Computing(..)) {
-                ui.spinner();
+                crate::gui::busy::spinner(ui);
             }
             let colour = match status {
                 Status::NoDemos

@@ -24,7 +24,7 @@ pub fn diagnostics_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
         Some(d) => snapshot_ui(ui, cx, d),
         None if session.extracting() || session.diagnosing() => {
             ui.horizontal(|ui| {
-                ui.spinner();
+                crate::gui::busy::spinner(ui);
                 ui.label("Diagnosing…");
             });
         }
@@ -306,7 +306,7 @@ fn limit_ui(ui: &mut egui::Ui, session: &Session, s: &mut Settings) {
         }
         None => {
             ui.horizontal(|ui| {
-                ui.spinner();
+                crate::gui::busy::spinner(ui);
                 ui.label("Finding the constrained optimum…");
             });
         }

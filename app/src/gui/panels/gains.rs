@@ -82,7 +82,7 @@ fn snap_buttons_ui(
 fn no_optimum_ui(ui: &mut egui::Ui, session: &crate::session::Session) {
     if session.extracting() {
         ui.horizontal(|ui| {
-            ui.spinner();
+            crate::gui::busy::spinner(ui);
             ui.label("Extracting the optimum…");
         });
     } else if session.model().is_none() {

@@ -53,7 +53,7 @@ pub fn top_bar_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             // A bar where the bytes are counted; a spinner (a frame each
             // frame) only where they are not.
             if !reading_ui(ui, cx) {
-                ui.spinner();
+                crate::gui::busy::spinner(ui);
             }
             ui.label("loading…");
         }
