@@ -8,6 +8,7 @@
 // Usage: web/build.sh --testing && (cd web/tests && node hostile_probe.mjs DIR [NAME...])
 // (PRELOAD=FILE opens FILE with Open… first, as large.mjs opens its take.)
 import { serve, launch } from "./serve.mjs";
+import { stateOf, until as untilOn } from "./poll.mjs";
 import { readFile, readdir, mkdtemp, rm } from "node:fs/promises";
 import { tmpdir } from "node:os";
 import { join, dirname } from "node:path";
@@ -35,16 +36,8 @@ try {
       if (window.__frames.length > 400) window.__frames.shift();
     });
   });
-  const state = () => page.evaluate(() => (window.dmpscope_state ? JSON.parse(window.dmpscope_state()) : null));
-  async function until(predicate, ms) {
-    const start = Date.now();
-    for (;;) {
-      const s = await state();
-      if (s && predicate(s)) return s;
-      if (Date.now() - start > ms) throw new Error("timed out");
-      await page.waitForTimeout(50);
-    }
-  }
+  const state = () => stateOf(page);
+  const until = (predicate, ms) => untilOn(page, predicate, ms, 50);
   await page.goto(url);
   await until((s) => s.landscape.total > 0 && s.landscape.done === s.landscape.total, 60000);
   if (process.env.PRELOAD) {

@@ -17,6 +17,7 @@
 // INCL=pattern lists the functions matching it by total time; SLOW_MS sets
 // the callbacks looked into (over 100 ms).
 import { serve, launch } from "./serve.mjs";
+import { until as untilOn } from "./poll.mjs";
 import { mkdtemp, rm } from "node:fs/promises";
 import { tmpdir } from "node:os";
 import { join, dirname } from "node:path";
@@ -72,16 +73,7 @@ try {
   cdp.on("Tracing.dataCollected", (e) => events.push(...e.value));
   const traced = new Promise((r) => cdp.once("Tracing.tracingComplete", r));
   await cdp.send("Tracing.start", { categories: "toplevel,disabled-by-default-devtools.timeline", transferMode: "ReportEvents" });
-  const state = () => page.evaluate(() => (window.dmpscope_state ? JSON.parse(window.dmpscope_state()) : null));
-  async function until(predicate, ms) {
-    const start = Date.now();
-    for (;;) {
-      const s = await state();
-      if (s && predicate(s)) return s;
-      if (Date.now() - start > ms) throw new Error("timed out");
-      await page.waitForTimeout(10);
-    }
-  }
+  const until = (predicate, ms) => untilOn(page, predicate, ms);
   await page.goto(url);
   await until((s) => s.frames >= 1, 20000);
   const hide = Number(process.env.HIDE ?? 0);
