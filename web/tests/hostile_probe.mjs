@@ -61,9 +61,13 @@ try {
   const names = (await readdir(dir)).sort().filter((n) => only.length === 0 || only.includes(n));
   for (const name of names) {
     const b64 = (await readFile(join(dir, name))).toString("base64");
-    await page.evaluate(([b64, name]) => {
+    await page.evaluate(async ([b64, name]) => {
       const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
       window.__hostile = new File([bytes], name);
+      // Read once, so that the browser holds its bytes (a blob made in the
+      // page reaches the browser's process in the background) as it holds
+      // a file dropped from the disk.
+      await window.__hostile.arrayBuffer();
     }, [b64, name]);
     const seen = (await state()).messages.length;
     probes = [];

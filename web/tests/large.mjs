@@ -159,9 +159,13 @@ try {
     const b64 = (await readFile(join(hostile, name))).toString("base64");
     // The file is made in the page first, so the clock counts the drop and
     // the app, not the test's copy of the bytes into the page.
-    await page.evaluate(([b64, name]) => {
+    await page.evaluate(async ([b64, name]) => {
       const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
       window.__hostile = new File([bytes], name);
+      // Read once, so that the browser holds its bytes (a blob made in the
+      // page reaches the browser's process in the background) as it holds
+      // a file dropped from the disk.
+      await window.__hostile.arrayBuffer();
     }, [b64, name]);
     const seen = (await state()).messages.length;
     const start = Date.now();

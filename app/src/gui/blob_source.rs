@@ -108,6 +108,49 @@ async fn load(
     }
 }
 
+thread_local! {
+    /// The small files of the last drop and the promises of their bytes,
+    /// asked for at the drop ([`prefetch_dropped`]).
+    static DROPPED: std::cell::RefCell<Vec<(web_sys::File, js_sys::Promise)>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Asks the browser for the bytes of each file of at most [`WHOLE`] bytes
+/// dropped on the page, at the drop, before the app's frame that takes the
+/// drop: the read then runs while that frame is drawn (under a software
+/// rasteriser the page's thread is held 150-250 ms per frame, and a read
+/// asked for inside the frame is answered only after it and the frame egui
+/// draws next). Called by a listener on the window (`web::start`).
+pub fn prefetch_dropped(event: &web_sys::DragEvent) {
+    let Some(files) = event.data_transfer().and_then(|d| d.files()) else {
+        return;
+    };
+    DROPPED.with(|dropped| {
+        let mut dropped = dropped.borrow_mut();
+        dropped.clear();
+        for file in (0..files.length()).filter_map(|i| files.get(i)) {
+            if file.size() as u64 <= WHOLE {
+                let bytes = file.array_buffer();
+                dropped.push((file, bytes));
+            }
+        }
+    });
+}
+
+/// The bytes asked for at the drop of `file`, if it was dropped.
+fn take_dropped(file: &web_sys::File) -> Option<js_sys::Promise> {
+    DROPPED.with(|dropped| {
+        let mut dropped = dropped.borrow_mut();
+        let same = |f: &web_sys::File| {
+            f.name() == file.name()
+                && f.size() == file.size()
+                && f.last_modified() == file.last_modified()
+        };
+        let i = dropped.iter().position(|(f, _)| same(f))?;
+        Some(dropped.swap_remove(i).1)
+    })
+}
+
 /// The least a read from the browser fetches: each read waits for the
 /// page's event loop (behind a frame, under a software rasteriser), so
 /// small reads (a record's head, a footer) are served from one larger one.
@@ -159,12 +202,29 @@ impl ReadAhead {
             len.max(AHEAD)
         };
         let start = offset.min(size.saturating_sub(want as u64));
-        let bytes = read_slice(file, start, want, size).await?;
+        let dropped = if size <= WHOLE {
+            take_dropped(file)
+        } else {
+            None
+        };
+        let bytes = match dropped {
+            // The whole file, asked for at its drop (`start` is 0).
+            Some(bytes) => buffer_bytes(bytes).await?,
+            None => read_slice(file, start, want, size).await?,
+        };
         self.start = start;
         self.bytes = bytes;
         self.answer(offset, len, size)
             .ok_or_else(|| format!("the browser gave too few bytes at offset {offset}"))
     }
+}
+
+/// The bytes of a promised `ArrayBuffer`.
+async fn buffer_bytes(promise: js_sys::Promise) -> Result<Vec<u8>, String> {
+    let buffer = JsFuture::from(promise)
+        .await
+        .map_err(|e| format!("the browser cannot read the file: {e:?}"))?;
+    Ok(js_sys::Uint8Array::new(&buffer).to_vec())
 }
 
 /// `len` bytes of `file` at `offset` (fewer at its end).

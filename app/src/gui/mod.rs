@@ -35,6 +35,8 @@ mod view3d;
 mod view_state;
 
 pub use app::DmpApp;
+#[cfg(target_arch = "wasm32")]
+pub use blob_source::prefetch_dropped;
 pub use commands::{Command, Export, Map};
 pub use pins::{Pin, Pins};
 #[cfg(feature = "testing")]

@@ -22,6 +22,7 @@ mod transport;
 pub mod worker;
 
 use eframe::wasm_bindgen::JsCast as _;
+use eframe::wasm_bindgen::prelude::Closure;
 use eframe::web_sys;
 
 use crate::gui::DmpApp;
@@ -50,7 +51,6 @@ fn wake_app() {
 /// requests and writes the state every frame).
 #[cfg(feature = "testing")]
 fn install_hooks(hooks: &crate::gui::SharedHooks) {
-    use eframe::wasm_bindgen::prelude::Closure;
     let h = hooks.clone();
     let state = Closure::<dyn Fn() -> String>::new(move || h.borrow().state.clone());
     let h = hooks.clone();
@@ -102,6 +102,19 @@ pub fn start() {
         return;
     };
     executor::start_pool();
+    // A drop's small files are asked for at the drop (capture phase: before
+    // eframe's own listener hands the drop to the app's next frame).
+    let prefetch = Closure::<dyn Fn(web_sys::DragEvent)>::new(|event: web_sys::DragEvent| {
+        crate::gui::prefetch_dropped(&event)
+    });
+    if let Some(window) = web_sys::window() {
+        let _ = window.add_event_listener_with_callback_and_bool(
+            "drop",
+            prefetch.as_ref().unchecked_ref(),
+            true,
+        );
+    }
+    prefetch.forget();
     wasm_bindgen_futures::spawn_local(async move {
         let started = eframe::WebRunner::new()
             .start(
