@@ -8,8 +8,8 @@
 // Usage: web/build.sh --testing && (cd web/tests && node hostile_probe.mjs DIR [NAME...])
 // (PRELOAD=FILE opens FILE with Open… first, as large.mjs opens its take.)
 import { serve, launch } from "./serve.mjs";
-import { stateOf, until as untilOn } from "./poll.mjs";
-import { readFile, readdir, mkdtemp, rm } from "node:fs/promises";
+import { fileInPage, stateOf, until as untilOn } from "./poll.mjs";
+import { readdir, mkdtemp, rm } from "node:fs/promises";
 import { tmpdir } from "node:os";
 import { join, dirname } from "node:path";
 import { fileURLToPath } from "node:url";
@@ -60,15 +60,7 @@ try {
   }
   const names = (await readdir(dir)).sort().filter((n) => only.length === 0 || only.includes(n));
   for (const name of names) {
-    const b64 = (await readFile(join(dir, name))).toString("base64");
-    await page.evaluate(async ([b64, name]) => {
-      const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
-      window.__hostile = new File([bytes], name);
-      // Read once, so that the browser holds its bytes (a blob made in the
-      // page reaches the browser's process in the background) as it holds
-      // a file dropped from the disk.
-      await window.__hostile.arrayBuffer();
-    }, [b64, name]);
+    await fileInPage(page, join(dir, name));
     const seen = (await state()).messages.length;
     probes = [];
     const dropped = await page.evaluate(() => {

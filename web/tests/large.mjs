@@ -11,7 +11,8 @@
 // Usage: web/build.sh --testing && cargo build && (cd web/tests && node large.mjs)
 // (DMPSCOPE_BIN names the native binary; LARGE_SECONDS the take's length.)
 import { serve, launch, chromiumPath } from "./serve.mjs";
-import { readFile, readdir, mkdtemp, mkdir, writeFile, rm, stat } from "node:fs/promises";
+import { fileInPage } from "./poll.mjs";
+import { readdir, mkdtemp, mkdir, writeFile, rm, stat } from "node:fs/promises";
 import { existsSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join, dirname } from "node:path";
@@ -156,17 +157,7 @@ try {
   // test fails.
   const slow = [];
   for (const name of names) {
-    const b64 = (await readFile(join(hostile, name))).toString("base64");
-    // The file is made in the page first, so the clock counts the drop and
-    // the app, not the test's copy of the bytes into the page.
-    await page.evaluate(async ([b64, name]) => {
-      const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
-      window.__hostile = new File([bytes], name);
-      // Read once, so that the browser holds its bytes (a blob made in the
-      // page reaches the browser's process in the background) as it holds
-      // a file dropped from the disk.
-      await window.__hostile.arrayBuffer();
-    }, [b64, name]);
+    await fileInPage(page, join(hostile, name));
     const seen = (await state()).messages.length;
     const start = Date.now();
     await page.evaluate(([name, seen]) => {
