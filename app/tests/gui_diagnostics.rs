@@ -151,7 +151,8 @@ fn an_a_peak_limit_gives_the_constrained_optimum() {
         .expect("computed")
         .expect("gains within the limit");
     let _line = h.get_by_label_contains("Constrained optimum: D/M");
-    let _masked = h.get_by_label_contains("(grey: a_peak >");
+    // The J map's title, and the map itself (its accessible label).
+    assert_eq!(h.query_all_by_label_contains("(grey: a_peak >").count(), 2);
     let before = h.state().settings.op;
     // The Go there buttons: the S minimum's, then the constrained one's.
     let buttons = h.get_all_by_role_and_label(Role::Button, "Go there");

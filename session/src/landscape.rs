@@ -30,6 +30,10 @@ const FIRST_PREVIEW: Duration = Duration::from_millis(60);
 pub struct Snapshot {
     /// The landscape (NaN where not computed yet).
     pub landscape: Landscape,
+    /// Each quantity of the table with missing points filled from coarser
+    /// ones, made with the snapshot (off the page's frames in the browser,
+    /// off the GUI's thread natively).
+    pub previews: [Vec<f64>; quantity::COUNT],
     /// Points done.
     pub done: usize,
     /// Points in all.
@@ -42,6 +46,18 @@ pub struct Snapshot {
 }
 
 impl Snapshot {
+    /// A snapshot of `landscape` with its previews.
+    fn new(landscape: Landscape, (done, total): (usize, usize), elapsed: Duration) -> Self {
+        let previews = std::array::from_fn(|q| landscape.preview(&landscape.values[q]));
+        Self {
+            landscape,
+            previews,
+            done,
+            total,
+            elapsed,
+        }
+    }
+
     /// Whether every point is computed.
     pub fn complete(&self) -> bool {
         self.done == self.total
@@ -121,24 +137,17 @@ impl LandscapeWork {
     }
 
     fn snapshot(&self) -> Snapshot {
-        let ((done, total), landscape) = match &self.engine {
+        let elapsed = self.clock.now().saturating_sub(self.started);
+        match &self.engine {
             Engine::Start(_, model, grid) => {
                 let blank = Landscape::for_model(*grid, model);
-                return Snapshot {
-                    done: 0,
-                    total: blank.grid.len(),
-                    landscape: blank,
-                    elapsed: self.clock.now().saturating_sub(self.started),
-                };
+                let total = blank.grid.len();
+                Snapshot::new(blank, (0, total), elapsed)
             }
-            Engine::Here(job) => (job.progress(), job.landscape()),
-            Engine::Workers(fill) => (fill.progress(), fill.landscape()),
-        };
-        Snapshot {
-            landscape: landscape.clone(),
-            done,
-            total,
-            elapsed: self.clock.now().saturating_sub(self.started),
+            Engine::Here(job) => Snapshot::new(job.landscape().clone(), job.progress(), elapsed),
+            Engine::Workers(fill) => {
+                Snapshot::new(fill.landscape().clone(), fill.progress(), elapsed)
+            }
         }
     }
 }
@@ -205,9 +214,6 @@ impl Work for LandscapeWork {
 pub struct Shown {
     /// The snapshot.
     pub snapshot: Snapshot,
-    /// Each quantity of the table with missing points filled from coarser
-    /// ones.
-    pub previews: [Vec<f64>; quantity::COUNT],
     /// J for [`Shown::k`], filled likewise.
     pub j: Vec<f64>,
     /// The k of `j`.
@@ -222,12 +228,20 @@ impl Shown {
     pub fn new(snapshot: Snapshot, k: f64, version: u64) -> Self {
         let l = &snapshot.landscape;
         Self {
-            previews: std::array::from_fn(|q| l.preview(&l.values[q])),
             j: l.preview(&l.j(k)),
             k,
             snapshot,
             version,
         }
+    }
+
+    /// A landscape of `grid` for `model` with nothing computed yet: what
+    /// the heat maps draw before the first snapshot (their axes, lines and
+    /// markers; the operating point can be moved on them already).
+    pub fn blank(model: &Model, grid: Grid) -> Self {
+        let landscape = Landscape::for_model(grid, model);
+        let total = landscape.grid.len();
+        Self::new(Snapshot::new(landscape, (0, total), Duration::ZERO), 0.0, 0)
     }
 
     /// Recombines J for a new `k` (no integration).
@@ -239,7 +253,7 @@ impl Shown {
 
     /// The preview of quantity `q`.
     pub fn values(&self, q: Quantity) -> &[f64] {
-        &self.previews[q.index()]
+        &self.snapshot.previews[q.index()]
     }
 
     /// The grid.

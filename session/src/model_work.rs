@@ -2,17 +2,20 @@
 //! [`BuildSteps`]): where jobs run on the caller's thread in slices (the
 //! browser's page), a new model is built between frames, not inside one
 //! (issue 43: about 25 ms of the page's thread for the bundled sample).
+//! Where jobs run elsewhere (natively), [`build_now`] builds it at once
+//! from the session's demos in place.
 
 use dmpscope_core::fit::settings::DmpSettings;
-use dmpscope_core::pipeline::BuildSteps;
+use dmpscope_core::pipeline::{BuildSteps, build_model};
 use dmpscope_core::prepare::demo::PrepSettings;
 use dmpscope_core::{RawDemo, Unusable};
 
 use crate::jobs::{Step, Work};
+use crate::state::{Built, DemoEntry};
 
-/// A model built, its demos' indices in the session's demos list, and what
-/// the build had to say; or why there is none.
-pub(crate) type ModelOutcome = Result<(dmpscope_core::Built, Vec<usize>), String>;
+/// A model built (its demos' indices in the session's demos list, what the
+/// build had to say), or why there is none.
+pub(crate) type ModelOutcome = Result<Built, String>;
 
 /// Builds the model of the chosen demos, a demo per step.
 pub(crate) struct ModelWork {
@@ -22,13 +25,11 @@ pub(crate) struct ModelWork {
 }
 
 impl ModelWork {
-    /// The build of `raws` (the session's demos at `chosen`).
-    pub(crate) fn new(
-        raws: Vec<RawDemo>,
-        chosen: Vec<usize>,
-        prep: PrepSettings,
-        dmp: DmpSettings,
-    ) -> Self {
+    /// The build of the included demos of `demos` (copied: the work runs
+    /// as a job, apart from the session's list).
+    pub(crate) fn new(demos: &[DemoEntry], prep: PrepSettings, dmp: DmpSettings) -> Self {
+        let chosen = included(demos);
+        let raws = chosen.iter().map(|&i| demos[i].raw.clone()).collect();
         Self {
             steps: BuildSteps::new(raws, prep, dmp, Unusable::Skip),
             chosen,
@@ -40,20 +41,42 @@ impl Work for ModelWork {
     type Output = ModelOutcome;
 
     fn step(&mut self) -> Step<ModelOutcome> {
-        let Some(built) = self.steps.step() else {
-            return Step::Working;
-        };
-        Step::Done(match built {
-            Ok(b) => {
-                let used = b.used.iter().map(|&i| self.chosen[i]).collect();
-                Ok((b, used))
-            }
-            Err(e) => Err(if self.chosen.is_empty() {
-                no_demo_included()
-            } else {
-                e.to_string()
-            }),
-        })
+        match self.steps.step() {
+            Some(built) => Step::Done(outcome(built, &self.chosen)),
+            None => Step::Working,
+        }
+    }
+}
+
+/// The model of the included demos of `demos` built at once, reading them
+/// in place (natively: milliseconds, no copy of the demos).
+pub(crate) fn build_now(demos: &[DemoEntry], prep: PrepSettings, dmp: DmpSettings) -> ModelOutcome {
+    let chosen = included(demos);
+    let built = build_model(
+        chosen.iter().map(|&i| &demos[i].raw),
+        &prep,
+        dmp,
+        Unusable::Skip,
+    );
+    outcome(built, &chosen)
+}
+
+/// The indices of the included demos.
+fn included(demos: &[DemoEntry]) -> Vec<usize> {
+    (0..demos.len()).filter(|&i| demos[i].included).collect()
+}
+
+/// The model built from the demos at `chosen`, its demos' indices mapped
+/// back to the session's list; or why there is none.
+fn outcome(built: dmpscope_core::Result<dmpscope_core::Built>, chosen: &[usize]) -> ModelOutcome {
+    match built {
+        Ok(b) => Ok(Built {
+            model: std::sync::Arc::new(b.model),
+            used: b.used.iter().map(|&i| chosen[i]).collect(),
+            notices: b.notices,
+        }),
+        Err(_) if chosen.is_empty() => Err(no_demo_included()),
+        Err(e) => Err(e.to_string()),
     }
 }
 

@@ -40,9 +40,9 @@ pub struct Session {
     /// reloads and regroupings).
     pub(crate) excluded: BTreeSet<(usize, String)>,
     pub(crate) messages: Messages,
-    pub(crate) model: Stage<ModelKey, Built>,
-    /// The model's build where it runs as a job (not natively).
-    pub(crate) model_job: Stage<ModelKey, crate::model_work::ModelOutcome>,
+    /// The model, or why there is none (built at once natively, as a job
+    /// of a demo per step in the browser).
+    pub(crate) model: Stage<ModelKey, crate::model_work::ModelOutcome>,
     pub(crate) landscape: Stage<LandscapeKey, Snapshot>,
     /// The landscape's latest snapshot as the heat maps show it.
     pub(crate) shown: Option<Shown>,
@@ -84,7 +84,6 @@ impl Session {
             excluded: BTreeSet::new(),
             messages: Messages::default(),
             model: Stage::default(),
-            model_job: Stage::default(),
             landscape: Stage::default(),
             shown: None,
             extraction: Stage::default(),
@@ -125,13 +124,21 @@ impl Session {
     #[must_use]
     pub fn frame_shown(&mut self, model: Option<u64>) -> bool {
         self.model_shown = model;
-        // Waiting, its stage was cleared: the next update starts it.
-        self.paced && self.model_version().is_some() && self.landscape.key().is_none()
+        // The next update starts it.
+        self.landscape_awaits_frame()
     }
 
-    /// Whether the landscape waits for a frame to show its model first.
-    pub(crate) fn landscape_waits(&self) -> bool {
+    /// Whether the current model has not been shown yet, so that its
+    /// landscape must wait (see [`Session::pace_by_frames`]).
+    pub(crate) fn model_unshown(&self) -> bool {
         self.paced && self.model_version().is_some() && self.model_version() != self.model_shown
+    }
+
+    /// Whether the landscape waits for a frame that shows its model: paced,
+    /// with a model, and the landscape's stage left empty for it (see
+    /// `update_landscape`).
+    fn landscape_awaits_frame(&self) -> bool {
+        self.paced && self.model_version().is_some() && self.landscape.key().is_none()
     }
 
     pub(crate) fn next_id(&mut self) -> u64 {
@@ -289,7 +296,7 @@ impl Session {
 
     /// The model, when one could be built.
     pub fn model(&self) -> Option<&Arc<Model>> {
-        self.model.value().map(|b| &b.model)
+        self.built().map(|b| &b.model)
     }
 
     /// Identifies the current model: changes whenever a new one is built.
@@ -299,7 +306,7 @@ impl Session {
 
     /// For each model demo, its index in [`Session::demos`].
     pub fn model_demos(&self) -> &[usize] {
-        self.model.value().map_or(&[], |b| b.used.as_slice())
+        self.built().map_or(&[], |b| b.used.as_slice())
     }
 
     /// The landscape as the heat maps show it.
@@ -456,7 +463,8 @@ impl Session {
     pub fn busy(&self) -> bool {
         self.loading()
             || self.landscape_running()
-            || self.landscape_waits()
+            || self.model.running()
+            || self.landscape_awaits_frame()
             || self.extracting()
             || self.diagnosing()
             || self.rl.running()
@@ -493,7 +501,15 @@ impl Session {
     }
 
     fn model_error(&self) -> Option<&str> {
-        self.model.error()
+        match self.model.value() {
+            Some(Err(why)) => Some(why),
+            _ => self.model.error(),
+        }
+    }
+
+    /// The model built, if any.
+    pub(crate) fn built(&self) -> Option<&Built> {
+        self.model.value().and_then(|b| b.as_ref().ok())
     }
 }
 
@@ -523,7 +539,7 @@ fn status_of(session: &Session) -> Status {
         Status::Cancelled(done, total)
     } else if session.landscape_failed() {
         Status::Stopped(done, total)
-    } else if session.model().is_none() || (session.paced && session.landscape.key().is_none()) {
+    } else if session.model().is_none() || session.landscape_awaits_frame() {
         // Not built yet (the first update has not run), or the landscape
         // starts at the next update (`Session::pace_by_frames`).
         Status::Computing(0, 0)

@@ -11,16 +11,16 @@ use dmpscope_core::report::presets::PAPER_PRESETS;
 use dmpscope_core::{Level, Model, RawDemo, extract};
 
 use crate::diagnostics::DiagnosticsWork;
-use crate::jobs::{Once, Step, Work};
+use crate::jobs::Once;
 use crate::landscape::{LandscapeWork, Shown};
-use crate::model_work::{ModelOutcome, ModelWork};
+use crate::model_work::{ModelWork, build_now};
 use crate::rl::RlWork;
 use crate::rl_request::RlRequest;
 use crate::session::Session;
 use crate::settings::Settings;
 use crate::stage::Polled;
 use crate::state::{
-    Built, ConstrainedKey, DemoEntry, DiagKey, ExtractionKey, LandscapeKey, ModelKey, PointKey,
+    ConstrainedKey, DemoEntry, DiagKey, ExtractionKey, LandscapeKey, ModelKey, PointKey,
     PointValue, RlKey,
 };
 
@@ -67,7 +67,6 @@ impl Session {
     pub(crate) fn update_model(&mut self, settings: &Settings) {
         if self.demos.is_empty() {
             self.model.clear();
-            self.model_job.clear();
             return;
         }
         let key = ModelKey {
@@ -76,61 +75,37 @@ impl Session {
             prep: settings.prep,
             dmp: settings.dmp,
         };
-        if self.model.is_for(&key) {
-            return;
-        }
-        let demos = &self.demos;
-        let work = || {
-            let chosen: Vec<usize> = (0..demos.len()).filter(|&i| demos[i].included).collect();
-            let raws = chosen.iter().map(|&i| demos[i].raw.clone()).collect();
-            ModelWork::new(raws, chosen, key.prep, key.dmp)
-        };
-        if self.runner.threaded() {
+        let (prep, dmp, demos) = (key.prep, key.dmp, &self.demos);
+        let arrived = if self.runner.threaded() {
             // Natively at once (milliseconds): no frame goes without a model.
-            let mut work = work();
-            let outcome = loop {
-                if let Step::Done(outcome) = work.step() {
-                    break outcome;
+            self.model
+                .ensure_now(key, |_| Ok(build_now(demos, prep, dmp)))
+        } else {
+            // Elsewhere a job of a demo per step: in the browser, slices
+            // between frames (tests: at once, at the first poll).
+            let runner = &self.runner;
+            self.model.ensure_job(key, || {
+                Ok(runner.start("the model", ModelWork::new(demos, prep, dmp)))
+            });
+            match self.model.poll() {
+                Polled::Value => true,
+                Polled::Failed(e) => {
+                    let text = format!("the model: {e}");
+                    self.messages.say(Level::Warning, text.clone());
+                    self.model.set_error(text);
+                    false
                 }
-            };
-            self.set_model(key, outcome);
-            return;
+                Polled::Nothing => false,
+            }
+        };
+        if arrived {
+            self.runs.models += 1;
+            match self.model.value_mut() {
+                Some(Ok(built)) => self.messages.extend(std::mem::take(&mut built.notices)),
+                Some(Err(text)) => self.messages.say(Level::Warning, text.clone()),
+                None => {}
+            }
         }
-        // Elsewhere a job of a demo per step: in the browser, slices
-        // between frames (tests: at once, at the first poll).
-        let runner = &self.runner;
-        self.model_job
-            .ensure_job(key.clone(), || Ok(runner.start("the model", work())));
-        // The model of other demos or settings is gone meanwhile.
-        self.model.clear();
-        match self.model_job.poll() {
-            Polled::Value => {
-                if let Some(outcome) = self.model_job.take_value() {
-                    self.set_model(key, outcome);
-                }
-            }
-            Polled::Failed(e) => self.set_model(key, Err(format!("the model: {e}"))),
-            Polled::Nothing => {}
-        }
-    }
-
-    /// Makes `outcome` the model for `key`, its notices the messages'.
-    fn set_model(&mut self, key: ModelKey, outcome: ModelOutcome) {
-        let messages = &mut self.messages;
-        let built = self.model.ensure_now(key, |_| match outcome {
-            Ok((mut built, used)) => {
-                messages.extend(std::mem::take(&mut built.notices));
-                Ok(Built {
-                    model: Arc::new(built.model),
-                    used,
-                })
-            }
-            Err(text) => {
-                messages.say(Level::Warning, text.clone());
-                Err(text)
-            }
-        });
-        self.runs.models += usize::from(built);
     }
 
     pub(crate) fn update_landscape(&mut self, settings: &Settings) {
@@ -143,7 +118,7 @@ impl Session {
             model: version,
             grid: settings.grid,
         };
-        if self.landscape_waits() && !self.landscape.is_for(&key) {
+        if self.model_unshown() && !self.landscape.is_for(&key) {
             // Starts at the next frame (see `Session::pace_by_frames`);
             // the landscape of an older model is gone meanwhile.
             self.landscape.clear();
@@ -399,8 +374,7 @@ impl Session {
     }
 
     pub(crate) fn model_and_version(&self) -> Option<(Arc<Model>, u64)> {
-        self.model
-            .value()
+        self.built()
             .map(|b| (b.model.clone(), self.model.version()))
     }
 }

@@ -61,10 +61,12 @@ pub(crate) struct ModelKey {
     pub(crate) dmp: DmpSettings,
 }
 
-/// A model built, and for each of its demos the index in the demos list.
+/// A model built, for each of its demos the index in the demos list, and
+/// what the build had to say (moved to the messages when it arrives).
 pub(crate) struct Built {
     pub(crate) model: Arc<Model>,
     pub(crate) used: Vec<usize>,
+    pub(crate) notices: Vec<dmpscope_core::Notice>,
 }
 
 /// The landscape: the model and the grid.

@@ -138,6 +138,12 @@ try {
   figures.page_frame_work_start_ms = done.page_frame_work_start_ms;
   // The frame that first drew the model (before the landscape starts).
   figures.page_frame_model_ms = done.page_frame_model_ms;
+  // Where each of those frames' time went (after the start frame): each
+  // phase's time, ms (the app's `test_hooks::mark`s).
+  figures.page_frame_phases_ms = done.page_frame_phases.phases_ms.map((r) => {
+    let last = 0;
+    return Object.fromEntries(r.map(([name, end]) => { const d = end - last; last = end; return [name, Math.round(d * 10) / 10]; }));
+  });
   check(work.length > 0, `frames were timed while computing (${work.length})`);
   console.log(`page frame work while computing: p95 ${figures.page_frame_work_ms_p95.toFixed(1)} ms, max ${figures.page_frame_work_ms_max.toFixed(1)} ms; the frames that first drew a model: ${JSON.stringify(figures.page_frame_model_ms.map((v) => Math.round(v * 10) / 10))} ms`);
   console.log(`optimum ${JSON.stringify(done.optimum)}`);

@@ -232,6 +232,8 @@ impl DmpApp {
                 panels::top_bar_ui(ui, &mut cx);
             }
         });
+        #[cfg(feature = "testing")]
+        super::test_hooks::mark("top");
         // The docked panels claim their whole size, so the layout does not
         // depend on what the first frames had to show (files load off the
         // frame).
@@ -243,12 +245,18 @@ impl DmpApp {
                 egui::ScrollArea::vertical().show(ui, |ui| panels::side_ui(ui, &mut cx));
             });
         });
+        #[cfg(feature = "testing")]
+        super::test_hooks::mark("side");
         docked(egui::Panel::right("plots"), 380.0, 340.0).show(ui, |ui| {
             claim(ui, shown(part::PLOTS), |ui| panels::plots_ui(ui, &mut cx));
         });
+        #[cfg(feature = "testing")]
+        super::test_hooks::mark("plots");
         docked(egui::Panel::bottom("table"), 200.0, 150.0).show(ui, |ui| {
             claim(ui, shown(part::TABLE), |ui| panels::table_ui(ui, &mut cx));
         });
+        #[cfg(feature = "testing")]
+        super::test_hooks::mark("table");
         egui::CentralPanel::default()
             .frame(central_frame)
             .show(ui, |ui| {
@@ -375,6 +383,8 @@ impl eframe::App for DmpApp {
         }
         #[cfg(feature = "testing")]
         self.serve_test_hooks(&ctx);
+        #[cfg(feature = "testing")]
+        super::test_hooks::mark("update");
 
         let left_out = self.left_out(&ctx);
         if left_out & (1 << part::EVERYTHING) != 0 {

@@ -41,6 +41,19 @@ impl Default for TestHooks {
 /// [`TestHooks`] shared between the app and the tests' entry points.
 pub type SharedHooks = Rc<RefCell<TestHooks>>;
 
+thread_local! {
+    /// This frame's phase ends so far (see [`mark`]).
+    static MARKS: RefCell<Vec<(&'static str, Instant)>> =
+        const { RefCell::new(Vec::new()) };
+}
+
+/// Marks the end of phase `name` of this frame (the session's update, a
+/// panel, a part of one), wherever the frame's code is: the browser probes
+/// read where a long frame's time went.
+pub fn mark(name: &'static str) {
+    MARKS.with(|m| m.borrow_mut().push((name, Instant::now())));
+}
+
 /// Frames drawn and the longest interval between frames while the
 /// landscape was computing.
 #[derive(Default)]
@@ -81,6 +94,10 @@ pub struct FrameWatch {
     /// first 100), ms: a new model's first layout (in the browser the
     /// landscape starts in the frame after it).
     pub(super) model_work_ms: Vec<f64>,
+    /// Per frame while computing (the first 40): the ends of its phases
+    /// (see [`mark`]), ms from its `ui` start: where a long frame's time
+    /// went.
+    pub(super) phases_ms: Vec<Vec<(&'static str, f64)>>,
 }
 
 impl FrameWatch {
@@ -140,8 +157,14 @@ impl FrameWatch {
 
     /// Records the end of this frame's `ui`.
     pub fn ui_done(&mut self) {
+        let marks = MARKS.with(|m| std::mem::take(&mut *m.borrow_mut()));
         if let Some(start) = self.ui_start.take() {
             self.last_ui_ms = start.elapsed().as_secs_f64() * 1e3;
+            if self.last_computing && self.phases_ms.len() < 40 {
+                let ms = |at: Instant| at.saturating_duration_since(start).as_secs_f64() * 1e3;
+                self.phases_ms
+                    .push(marks.into_iter().map(|(name, at)| (name, ms(at))).collect());
+            }
             if std::mem::take(&mut self.new_model) && self.model_work_ms.len() < 100 {
                 self.model_work_ms.push(self.last_ui_ms);
             }

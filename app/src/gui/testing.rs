@@ -135,6 +135,7 @@ impl DmpApp {
             "page_frame_work_ms": self.frame_watch.work_ms,
             "page_frame_work_start_ms": self.frame_watch.start_work_ms,
             "page_frame_model_ms": self.frame_watch.model_work_ms,
+            "page_frame_phases": self.frame_phases_json(),
             "pins": self.view.pins.list().iter().zip(self.pin_paths_drawn()).map(|(p, paths)| serde_json::json!({
                 "name": p.name,
                 "dm": p.dm,
@@ -149,6 +150,15 @@ impl DmpApp {
                 "t": self.view.t,
                 "t_target": self.view.t_target,
             },
+        })
+    }
+
+    /// Where the frames' time went while computing: each frame's phase
+    /// ends and each heat map image made, ms (`web/tests/phases_probe.mjs`).
+    fn frame_phases_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "phases_ms": self.frame_watch.phases_ms,
+            "heatmap_build_ms": crate::gui::heatmap::BUILD_MS.with(|ms| ms.borrow().clone()),
         })
     }
 }

@@ -2,6 +2,8 @@
 //! the session's: the selected demo, the time cursor, the 3D camera, the
 //! heat maps' textures, the RL panel's choices, text being typed.
 
+use dmpscope_core::Model;
+use dmpscope_core::landscape::grid::Grid;
 use dmpscope_core::load::options::SegmentSettings;
 use eframe::{egui, egui_wgpu};
 
@@ -105,8 +107,36 @@ pub struct ViewState {
     pub compare_table: bool,
     /// The pinned sets the Demo tab's plots drew last frame (tests).
     pub plot_pin_lines: usize,
+    /// The empty landscape the maps draw before the first snapshot.
+    pub blank_maps: BlankMaps,
     /// The model the views were set up for.
     model_seen: Option<u64>,
+}
+
+/// An empty landscape for the maps to draw before the first snapshot of a
+/// model's, made once per model and grid.
+#[derive(Default)]
+pub struct BlankMaps {
+    made: Option<(Option<u64>, Grid, crate::session::Shown)>,
+}
+
+impl BlankMaps {
+    /// The empty landscape of `grid` for `model` (version `version`).
+    pub fn for_model(
+        &mut self,
+        model: &Model,
+        version: Option<u64>,
+        grid: Grid,
+    ) -> &crate::session::Shown {
+        let fresh = matches!(&self.made, Some((v, g, _)) if *v == version && *g == grid);
+        if !fresh {
+            self.made = None;
+        }
+        let (_, _, shown) = self
+            .made
+            .get_or_insert_with(|| (version, grid, crate::session::Shown::blank(model, grid)));
+        shown
+    }
 }
 
 impl ViewState {
@@ -138,6 +168,7 @@ impl ViewState {
             pin_error: None,
             compare_table: false,
             plot_pin_lines: 0,
+            blank_maps: BlankMaps::default(),
             model_seen: None,
         }
     }

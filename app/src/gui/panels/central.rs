@@ -24,10 +24,26 @@ const MIN_QUAD_SIDE: f32 = 110.0;
 pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
     let session = cx.session;
     let height = (ui.available_height() * 0.5).clamp(200.0, 420.0);
-    match session.shown() {
-        Some(shown) => maps(ui, session, shown, cx.settings, cx.view, height),
-        None => status(ui, &session.status(), height),
+    let status_now = session.status();
+    let computing = matches!(status_now, Status::Computing(..));
+    match (session.shown(), session.model()) {
+        (Some(shown), _) => maps(ui, session, shown, cx.settings, cx.view, height),
+        // Before the first snapshot the maps are drawn empty: the layout
+        // does not move when it arrives, the operating point can be moved
+        // already, and their first layout (text, 5 ms in the browser) is
+        // not in the frame that takes the first snapshot.
+        (None, Some(model)) if computing => {
+            // Out of the view while the maps borrow it.
+            let mut blank = std::mem::take(&mut cx.view.blank_maps);
+            let version = session.model_version();
+            let shown = blank.for_model(model, version, cx.settings.grid);
+            maps(ui, session, shown, cx.settings, cx.view, height);
+            cx.view.blank_maps = blank;
+        }
+        (None, _) => status(ui, &status_now, height),
     }
+    #[cfg(feature = "testing")]
+    crate::gui::test_hooks::mark("maps");
     if let Some(model) = session.model() {
         let view = &mut *cx.view;
         view.view3d
@@ -52,6 +68,8 @@ pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             overlay: overlay.as_ref(),
             pins: &pins,
         };
+        #[cfg(feature = "testing")]
+        crate::gui::test_hooks::mark("3d toggles");
         let moved = view.view3d.show(
             ui,
             model,
@@ -60,6 +78,8 @@ pub fn central_ui(ui: &mut egui::Ui, cx: &mut PanelCtx<'_>) {
             view.t,
             layers,
         );
+        #[cfg(feature = "testing")]
+        crate::gui::test_hooks::mark("3d view");
         if let (Some(m), Some(spec)) = (moved, session.generalise_spec()) {
             let mut spec = *spec;
             match m {
@@ -258,6 +278,7 @@ impl MapsData<'_> {
             iso_zeta: true,
             cloud: if on_j { self.cloud } else { &[] },
             region: self.region,
+            note: (shown.snapshot.done == 0).then_some("computing…"),
         };
         heatmap::show(ui, cache, &input, self.markers, op, side);
     }
