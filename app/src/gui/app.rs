@@ -67,15 +67,25 @@ impl DmpApp {
     /// The app on `sources` (the bundled planted8 sample when empty) with explicit
     /// settings and runner (tests use [`Runner::inline`]).
     pub fn with_runner(settings: Settings, sources: Vec<Source>, runner: Runner) -> Self {
+        // In the browser a new model's first layout and the landscape's
+        // start (the workers' model) fall in different frames.
+        Self::build(settings, sources, runner, cfg!(target_arch = "wasm32"))
+    }
+
+    /// As [`DmpApp::with_runner`], a new model's landscape started a frame
+    /// after the model is first shown, as in the browser (tests).
+    pub fn with_runner_paced(settings: Settings, sources: Vec<Source>, runner: Runner) -> Self {
+        Self::build(settings, sources, runner, true)
+    }
+
+    fn build(settings: Settings, sources: Vec<Source>, runner: Runner, paced: bool) -> Self {
         let sources = if sources.is_empty() {
             vec![Source::planted_sample()]
         } else {
             sources
         };
         let mut session = Session::new(runner);
-        // In the browser a new model's first layout and the landscape's
-        // start (the workers' model) fall in different frames.
-        session.pace_by_frames(cfg!(target_arch = "wasm32"));
+        session.pace_by_frames(paced);
         session.apply(session::Command::AddSources(sources));
         session.update(&settings);
         Self {
@@ -362,6 +372,7 @@ impl eframe::App for DmpApp {
             self.session.landscape_running(),
             self.session.status().describe(),
             frame.info().cpu_usage,
+            ctx.current_pass_index(),
         );
         let arrived = self.take_inputs(&ctx);
         for c in arrived {
@@ -389,9 +400,11 @@ impl eframe::App for DmpApp {
         let left_out = self.left_out(&ctx);
         if left_out & (1 << part::EVERYTHING) != 0 {
             ui.label(format!("frame {}", ctx.cumulative_frame_nr()));
-            if self.session.frame_shown(self.session.model_version()) {
+            if !ctx.will_discard() && self.session.frame_shown(self.session.model_version()) {
                 ctx.request_repaint();
             }
+            #[cfg(feature = "testing")]
+            self.publish_test_state(&ctx);
             return;
         }
         let played = self.play(&ctx);
@@ -421,11 +434,18 @@ impl eframe::App for DmpApp {
             self.session.update(&self.settings);
             ctx.request_repaint();
         }
-        if self.session.frame_shown(drawn) {
+        // A pass egui discards (it runs `ui` again at once, in the same
+        // frame: a first layout of sizes it did not know) shows nothing.
+        if !ctx.will_discard() && self.session.frame_shown(drawn) {
             ctx.request_repaint();
         }
         #[cfg(feature = "testing")]
-        self.frame_watch.ui_done();
+        {
+            self.frame_watch.ui_done(ctx.will_discard());
+            if !ctx.will_discard() {
+                self.publish_test_state(&ctx);
+            }
+        }
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

@@ -110,10 +110,15 @@ async fn load(
 
 thread_local! {
     /// The small files of the last drop and the promises of their bytes,
-    /// asked for at the drop ([`prefetch_dropped`]).
-    static DROPPED: std::cell::RefCell<Vec<(web_sys::File, js_sys::Promise)>> =
-        const { std::cell::RefCell::new(Vec::new()) };
+    /// asked for at the drop ([`prefetch_dropped`]), and the drop's number.
+    static DROPPED: std::cell::RefCell<(u64, Vec<(web_sys::File, js_sys::Promise)>)> =
+        const { std::cell::RefCell::new((0, Vec::new())) };
 }
+
+/// How long a dropped file's bytes asked for at the drop are kept for the
+/// app to read (it reads them within a frame or two; a file it does not
+/// read, such as one of an unknown kind, is not kept longer).
+const DROPPED_KEPT_MS: i32 = 30_000;
 
 /// Asks the browser for the bytes of each file of at most [`WHOLE`] bytes
 /// dropped on the page, at the drop, before the app's frame that takes the
@@ -125,8 +130,9 @@ pub fn prefetch_dropped(event: &web_sys::DragEvent) {
     let Some(files) = event.data_transfer().and_then(|d| d.files()) else {
         return;
     };
-    DROPPED.with(|dropped| {
-        let mut dropped = dropped.borrow_mut();
+    let drop = DROPPED.with(|dropped| {
+        let (drop, dropped) = &mut *dropped.borrow_mut();
+        *drop += 1;
         dropped.clear();
         for file in (0..files.length()).filter_map(|i| files.get(i)) {
             if file.size() as u64 <= WHOLE {
@@ -134,13 +140,31 @@ pub fn prefetch_dropped(event: &web_sys::DragEvent) {
                 dropped.push((file, bytes));
             }
         }
+        *drop
+    });
+    wasm_bindgen_futures::spawn_local(async move {
+        let kept = js_sys::Promise::new(&mut |resolve, _| {
+            if let Some(w) = web_sys::window() {
+                let _ = w.set_timeout_with_callback_and_timeout_and_arguments_0(
+                    &resolve,
+                    DROPPED_KEPT_MS,
+                );
+            }
+        });
+        let _ = JsFuture::from(kept).await;
+        DROPPED.with(|dropped| {
+            let (last, dropped) = &mut *dropped.borrow_mut();
+            if *last == drop {
+                dropped.clear();
+            }
+        });
     });
 }
 
 /// The bytes asked for at the drop of `file`, if it was dropped.
 fn take_dropped(file: &web_sys::File) -> Option<js_sys::Promise> {
     DROPPED.with(|dropped| {
-        let mut dropped = dropped.borrow_mut();
+        let (_, dropped) = &mut *dropped.borrow_mut();
         let same = |f: &web_sys::File| {
             f.name() == file.name()
                 && f.size() == file.size()

@@ -54,6 +54,17 @@ pub fn mark(name: &'static str) {
     MARKS.with(|m| m.borrow_mut().push((name, Instant::now())));
 }
 
+/// A mark on the page's timeline (Chromium's trace shows it, so a probe
+/// can pick the frames while the landscape computes); nothing natively.
+fn page_mark(name: &str) {
+    #[cfg(target_arch = "wasm32")]
+    if let Some(p) = web_sys::window().and_then(|w| w.performance()) {
+        let _ = p.mark(name);
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    let _ = name;
+}
+
 /// Frames drawn and the longest interval between frames while the
 /// landscape was computing.
 #[derive(Default)]
@@ -106,8 +117,20 @@ impl FrameWatch {
     /// counts as one while computing when the landscape was computing at
     /// either of its frames (a frame that starts during the landscape and
     /// ends after it is one the user waited for).
-    pub fn frame(&mut self, computing: bool, status: String, cpu_s: Option<f32>) {
+    /// `pass` is egui's pass of the frame: a pass after the first reruns
+    /// the same frame (its first pass was discarded) and counts with it.
+    pub fn frame(&mut self, computing: bool, status: String, cpu_s: Option<f32>, pass: usize) {
+        if pass > 0 && self.ui_start.is_some() {
+            return;
+        }
         let counts = computing || self.last_computing;
+        if computing != self.last_computing {
+            page_mark(if computing {
+                "dmpscope-landscape-start"
+            } else {
+                "dmpscope-landscape-end"
+            });
+        }
         if computing && !self.last_computing && self.start_work_ms.is_none() {
             // The frame before this one started the landscape.
             self.start_work_ms = Some(self.last_ui_ms);
@@ -151,12 +174,18 @@ impl FrameWatch {
 
     /// Records the model version this frame drew.
     pub fn model_drawn(&mut self, version: Option<u64>) {
-        self.new_model = version.is_some() && version != self.model_drawn;
+        // Or'ed: a pass egui discards and its rerun are one frame.
+        self.new_model |= version.is_some() && version != self.model_drawn;
         self.model_drawn = version;
     }
 
-    /// Records the end of this frame's `ui`.
-    pub fn ui_done(&mut self) {
+    /// Records the end of this frame's `ui`, unless egui discards this
+    /// pass (`discarded`): the next pass is the same frame, its time
+    /// counted from this one's start.
+    pub fn ui_done(&mut self, discarded: bool) {
+        if discarded {
+            return;
+        }
         let marks = MARKS.with(|m| std::mem::take(&mut *m.borrow_mut()));
         if let Some(start) = self.ui_start.take() {
             self.last_ui_ms = start.elapsed().as_secs_f64() * 1e3;

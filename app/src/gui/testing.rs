@@ -20,7 +20,7 @@ impl DmpApp {
         self
     }
 
-    /// Applies the tests' requests and publishes the state (every frame).
+    /// Applies the tests' requests (at the start of every frame's `ui`).
     pub(super) fn serve_test_hooks(&mut self, ctx: &egui::Context) {
         let Some(hooks) = self.hooks.clone() else {
             return;
@@ -45,9 +45,17 @@ impl DmpApp {
             self.settings.set_grid_points(n);
             self.session.update(&self.settings);
         }
+        self.frame_watch.exclude(spent.elapsed());
+    }
+
+    /// Publishes the state at the end of a frame's last pass: what the
+    /// frame showed, where it drew what the tests click, its timing.
+    pub(super) fn publish_test_state(&mut self, ctx: &egui::Context) {
+        let Some(hooks) = self.hooks.clone() else {
+            return;
+        };
         let state = self.test_state(ctx).to_string();
         hooks.borrow_mut().state = state;
-        self.frame_watch.exclude(spent.elapsed());
     }
 
     /// Per pin, the paths the 3D view drew for it last frame (0 when
