@@ -29,6 +29,7 @@ mod target_plots;
 mod test_hooks;
 #[cfg(feature = "testing")]
 mod testing;
+mod thinning;
 mod timeline;
 mod tradeoff;
 mod view3d;

@@ -4,6 +4,7 @@
 //! goal, the angular velocity and the angular acceleration per axis.
 
 use super::cached_lines::{CachedLines, SnappedBounds};
+use super::thinning::kept;
 use dmpscope_core::fit::orientation::OrientationRollout;
 use dmpscope_core::geom::Vec3;
 use dmpscope_core::rotation;
@@ -163,12 +164,8 @@ fn show_rows(
         let n = target.len().max(2);
         let t_of = |k: usize| duration_s * k as f64 / (n - 1) as f64;
         let series = |v: &[Vec3], ax: usize, max: usize| -> Vec<[f64; 2]> {
-            let stride = v.len().div_ceil(max).max(1);
-            let last = v.len().saturating_sub(1);
-            v.iter()
-                .enumerate()
-                .filter(|(k, _)| k % stride == 0 || *k == last)
-                .map(|(k, p)| [t_of(k), p[ax] * scale])
+            kept(v.len(), max)
+                .map(|k| [t_of(k), v[k][ax] * scale])
                 .collect()
         };
         // The demo's range over the three axes: the steps the regeneration's

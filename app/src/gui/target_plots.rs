@@ -9,6 +9,7 @@ use dmpscope_core::{Generalised, Rollout};
 use eframe::egui::{self, Color32};
 use egui_plot::{HLine, Legend, Line, LineStyle, Plot, PlotPoints, PlotUi, VLine};
 
+use crate::gui::thinning::kept;
 use crate::session::TargetView;
 
 const AXES: [(&str, Color32); 3] = [
@@ -48,13 +49,8 @@ fn series(
     time: impl Fn(usize) -> f64,
     value: impl Fn(f64) -> f64,
 ) -> PlotPoints<'static> {
-    let stride = values.len().div_ceil(MAX_POINTS).max(1);
-    let last = values.len().saturating_sub(1);
-    values
-        .iter()
-        .enumerate()
-        .filter(|(k, _)| k % stride == 0 || *k == last)
-        .map(|(k, p)| [time(k), value(p[axis])])
+    kept(values.len(), MAX_POINTS)
+        .map(|k| [time(k), value(values[k][axis])])
         .collect()
 }
 
@@ -152,8 +148,7 @@ fn goal_and_band(plot: &mut PlotUi<'_>, o: &Generalised, ax: usize, colour: Colo
     );
     if o.band.len() == n {
         for sign in [-1.0, 1.0] {
-            let points: PlotPoints<'static> = (0..n)
-                .step_by(n.div_ceil(MAX_POINTS).max(1))
+            let points: PlotPoints<'static> = kept(n, MAX_POINTS)
                 .map(|k| [o.t[k], o.unit.y[k][ax] - from + sign * o.band[k][ax]])
                 .collect();
             plot.line(

@@ -6,8 +6,7 @@ use dmpscope_core::geom;
 use glam::Vec3;
 
 use super::scene::{
-    DARK, Frame, PIN_PATH_POINTS, SceneInput, SceneTarget, SegmentList, at_time, decimate, lighter,
-    rgba,
+    DARK, Frame, PIN_PATH_POINTS, SceneInput, SceneTarget, SegmentList, at_time, lighter, rgba,
 };
 
 /// Triads along every shown demo (solid) and its regeneration (lighter),
@@ -66,7 +65,10 @@ pub(super) fn pinned(out: &mut SegmentList, frame: &Frame, input: &SceneInput<'_
                     continue;
                 }
                 let local = |p: &geom::Vec3| frame.local(d.p0 + p);
-                let path: Vec<Vec3> = decimate(&r.y, PIN_PATH_POINTS).iter().map(local).collect();
+                let path: Vec<Vec3> = crate::gui::thinning::thinned(&r.y, PIN_PATH_POINTS)
+                    .iter()
+                    .map(local)
+                    .collect();
                 out.path(&path, c, 1.6 * ppp, 0.0);
                 drawn += 1;
                 if i == sel

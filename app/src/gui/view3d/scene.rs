@@ -10,6 +10,7 @@ use dmpscope_core::{PreparedDemo, Rollout};
 use glam::Vec3;
 
 use super::camera::Bounds;
+use crate::gui::thinning::thinned;
 
 /// One segment as the GPU reads it (see `lines.wgsl`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -33,18 +34,6 @@ const MAX_PATH_POINTS: usize = 250;
 /// are hundreds of paths, and half the points of a demo's own path keep
 /// them smooth at the view's size (`tests/frame_time.sh` with six pins).
 pub(super) const PIN_PATH_POINTS: usize = 125;
-
-/// Every `k`-th of `points` and the last, at most about `max` of them.
-pub(super) fn decimate<T: Copy + PartialEq>(points: &[T], max: usize) -> Vec<T> {
-    let stride = points.len().div_ceil(max.max(1)).max(1);
-    let mut picked: Vec<T> = points.iter().copied().step_by(stride).collect();
-    if let Some(last) = points.last()
-        && picked.last() != Some(last)
-    {
-        picked.push(*last);
-    }
-    picked
-}
 
 /// Line widths in physical pixels.
 const WIDTH: f32 = 2.0;
@@ -239,7 +228,7 @@ impl SegmentList {
 
     /// A polyline through `points` (decimated), dashed when `dash > 0`.
     pub(super) fn path(&mut self, points: &[Vec3], colour: [f32; 4], width: f32, dash: f32) {
-        let picked = decimate(points, MAX_PATH_POINTS);
+        let picked = thinned(points, MAX_PATH_POINTS);
         let mut s = 0.0;
         for w in picked.windows(2) {
             let len = (w[1] - w[0]).length();
