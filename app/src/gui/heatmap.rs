@@ -69,6 +69,13 @@ pub const REGION_COLOUR: Color32 = Color32::from_rgb(120, 255, 140);
 /// The colour of masked points.
 const MASKED: Color32 = Color32::from_rgb(90, 70, 70);
 
+/// The least map side with markers' labels (and iso-zeta labels).
+const LABELLED_SIDE: f32 = 150.0;
+
+/// Where a marker's label may go, in order: right above, right below,
+/// left above, left below its circle.
+const LABEL_SIDES: [(f32, f32); 4] = [(1.0, -1.0), (1.0, 1.0), (-1.0, -1.0), (-1.0, 1.0)];
+
 const AXIS_MARGIN: f32 = 44.0;
 const BAR_WIDTH: f32 = 14.0;
 const BAR_MARGIN: f32 = 58.0;
@@ -454,15 +461,32 @@ fn heatmap_points_ui(area: &MapArea, cloud: &[(f64, f64)], markers: &[Marker], o
         );
     }
     for m in markers {
-        let p = area.to_screen(m.dm, m.km);
-        painter.circle_stroke(p, 4.0, Stroke::new(1.5, m.colour));
-        painter.text(
-            p + Vec2::new(5.0, -5.0),
-            Align2::LEFT_BOTTOM,
-            &m.label,
-            area.font.clone(),
-            m.colour,
-        );
+        painter.circle_stroke(area.to_screen(m.dm, m.km), 4.0, Stroke::new(1.5, m.colour));
+    }
+    // Labels only where there is room for them (the big map: the small
+    // maps' circles have the same colours), each where it covers no other.
+    if area.map.width() >= LABELLED_SIDE {
+        let mut placed: Vec<Rect> = Vec::new();
+        for m in markers {
+            let p = area.to_screen(m.dm, m.km);
+            let galley = painter.layout_no_wrap(m.label.clone(), area.font.clone(), m.colour);
+            let size = galley.size();
+            let free = LABEL_SIDES.iter().find_map(|&(dx, dy)| {
+                let corner = p + Vec2::new(dx * 5.0, dy * 5.0);
+                let min = corner
+                    - Vec2::new(
+                        if dx < 0.0 { size.x } else { 0.0 },
+                        if dy < 0.0 { size.y } else { 0.0 },
+                    );
+                let rect = Rect::from_min_size(min, size);
+                (area.map.contains_rect(rect) && placed.iter().all(|r| !r.intersects(rect)))
+                    .then_some(rect)
+            });
+            if let Some(rect) = free {
+                placed.push(rect);
+                painter.galley(rect.min, galley, m.colour);
+            }
+        }
     }
     let p = area.to_screen(op.0, op.1);
     painter.circle_filled(p, 5.0, Color32::WHITE);
@@ -524,7 +548,7 @@ fn iso_zeta(
         // three maps (tests/frame_time.sh).
         painter.add(egui::Shape::line(line, Stroke::new(1.0, colour)));
         // Labels only where there is room for them (the big map).
-        if map.width() < 150.0 {
+        if map.width() < LABELLED_SIDE {
             continue;
         }
         // Staggered so that lines leaving close together stay readable.
