@@ -61,6 +61,9 @@ pub struct MapInput<'a> {
     pub region: Option<&'a [bool]>,
     /// Said across the map (e.g. that nothing is computed yet).
     pub note: Option<&'a str>,
+    /// Label the markers (one map of several: the others keep the circles,
+    /// in the same colours).
+    pub labels: bool,
 }
 
 /// The colour of the acceptable region's outline.
@@ -69,7 +72,7 @@ pub const REGION_COLOUR: Color32 = Color32::from_rgb(120, 255, 140);
 /// The colour of masked points.
 const MASKED: Color32 = Color32::from_rgb(90, 70, 70);
 
-/// The least map side with markers' labels (and iso-zeta labels).
+/// The least map side with iso-zeta labels.
 const LABELLED_SIDE: f32 = 150.0;
 
 /// Where a marker's label may go, in order: right above, right below,
@@ -279,7 +282,7 @@ pub fn show(
     if let Some(region) = input.region {
         region_outline(&area, region);
     }
-    heatmap_points_ui(&area, input.cloud, markers, *op);
+    heatmap_points_ui(&area, input.cloud, markers, *op, input.labels);
     heatmap_readout_ui(&area, &response, input);
     if (response.dragged() || response.clicked())
         && let Some(pos) = response.interact_pointer_pos()
@@ -451,7 +454,13 @@ fn region_outline(area: &MapArea, region: &[bool]) {
 }
 
 /// The cloud of points, the labelled markers and the operating point `op`.
-fn heatmap_points_ui(area: &MapArea, cloud: &[(f64, f64)], markers: &[Marker], op: (f64, f64)) {
+fn heatmap_points_ui(
+    area: &MapArea,
+    cloud: &[(f64, f64)],
+    markers: &[Marker],
+    op: (f64, f64),
+    labels: bool,
+) {
     let painter = &area.painter;
     for &(dm, km) in cloud {
         painter.circle_filled(
@@ -463,9 +472,8 @@ fn heatmap_points_ui(area: &MapArea, cloud: &[(f64, f64)], markers: &[Marker], o
     for m in markers {
         painter.circle_stroke(area.to_screen(m.dm, m.km), 4.0, Stroke::new(1.5, m.colour));
     }
-    // Labels only where there is room for them (the big map: the small
-    // maps' circles have the same colours), each where it covers no other.
-    if area.map.width() >= LABELLED_SIDE {
+    // Each label where it covers no other (none where no side is free).
+    if labels {
         let mut placed: Vec<Rect> = Vec::new();
         for m in markers {
             let p = area.to_screen(m.dm, m.km);

@@ -279,6 +279,7 @@ impl MapsData<'_> {
             cloud: if on_j { self.cloud } else { &[] },
             region: self.region,
             note: (shown.snapshot.done == 0).then_some("computing…"),
+            labels: on_j,
         };
         heatmap::show(ui, cache, &input, self.markers, op, side);
     }
