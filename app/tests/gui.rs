@@ -136,16 +136,7 @@ fn a_preset_button_then_a_drag_move_the_operating_point() {
     // just below the title.
     let title = h.get_by_label("J = S + k sum d").rect();
     let start = egui::pos2(title.left() + 60.0, title.bottom() + 20.0);
-    h.hover_at(start);
-    h.run_steps(1);
-    h.drag_at(start);
-    h.run_steps(1);
-    for step in 1..=5 {
-        h.hover_at(start + egui::vec2(5.0 * step as f32, 5.0 * step as f32));
-        h.run_steps(1);
-    }
-    h.drop_at(start + egui::vec2(25.0, 25.0));
-    h.run_steps(2);
+    support::drag_from(&mut h, start);
     let (dm, km) = h.state().settings.op;
     assert!((dm, km) != (100.0, 20.0), "the drag did not move the point");
     let row = operating_point_row(&h);

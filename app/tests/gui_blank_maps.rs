@@ -82,16 +82,7 @@ fn the_maps_are_drawn_empty_until_the_first_snapshot_and_take_the_operating_poin
     // A drag on the empty J map moves the operating point.
     let before = h.state().settings.op;
     let start = egui::pos2(title.left() + 60.0, title.bottom() + 20.0);
-    h.hover_at(start);
-    h.run_steps(1);
-    h.drag_at(start);
-    h.run_steps(1);
-    for step in 1..=5 {
-        h.hover_at(start + egui::vec2(5.0 * step as f32, 5.0 * step as f32));
-        h.run_steps(1);
-    }
-    h.drop_at(start + egui::vec2(25.0, 25.0));
-    h.run_steps(2);
+    support::drag_from(&mut h, start);
     assert_ne!(h.state().settings.op, before, "the drag moved the point");
     assert!(h.state().session().shown().is_none(), "still no snapshot");
 }

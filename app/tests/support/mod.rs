@@ -230,3 +230,18 @@ pub fn run_at_new_target<'a>(
         .expect("the run at a new target is on")
         .expect("the run at a new target runs")
 }
+
+/// Drags the pointer from `start` by 25 points right and down, in five
+/// moves a frame apart, as a person drags on a map.
+pub fn drag_from(h: &mut egui_kittest::Harness<'_, dmpscope::gui::DmpApp>, start: egui::Pos2) {
+    h.hover_at(start);
+    h.run_steps(1);
+    h.drag_at(start);
+    h.run_steps(1);
+    for step in 1..=5 {
+        h.hover_at(start + egui::vec2(5.0 * step as f32, 5.0 * step as f32));
+        h.run_steps(1);
+    }
+    h.drop_at(start + egui::vec2(25.0, 25.0));
+    h.run_steps(2);
+}
