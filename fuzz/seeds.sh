@@ -22,4 +22,8 @@ dmpscope gen-sample --hostile fuzz/corpus/hostile
 cp fuzz/corpus/hostile/*.mcap fuzz/corpus/stream/
 cp fuzz/corpus/hostile/*.bag fuzz/corpus/bag/
 cp core/tests/bags/*/*.bag fuzz/corpus/bag/
-ls -la "$out" fuzz/corpus/stream fuzz/corpus/bag
+# The CSV readers: a plain file and a Motive export (the core's test's).
+mkdir -p fuzz/corpus/csv
+printf 't,x,y,z,qx,qy,qz,qw\n0,0,0,0,0,0,0,1\n0.01,0.1,0,0,0,0,0,1\n' > fuzz/corpus/csv/plain.csv
+sed -n '/^Format Version/,/^";$/p' core/src/load/motive.rs | sed '$d' | sed 's/\\"/"/g' > fuzz/corpus/csv/motive.csv
+ls -la "$out" fuzz/corpus/stream fuzz/corpus/bag fuzz/corpus/csv

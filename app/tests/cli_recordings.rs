@@ -217,3 +217,86 @@ fn a_short_smoothing_window_is_flagged_and_a_window_in_seconds_fixes_it() {
     let out = dmpscope(&["extract", "--sg-seconds", "0", dir]);
     assert!(!out.status.success() && text(&out.stderr).contains("above 0"));
 }
+
+/// An OptiTrack Motive export (format 1.22, as Motive writes it) in
+/// millimetres, y up: two hands reaching 300 mm forward (-z in Motive's
+/// frame) and 150 mm up at 120 Hz for 2 s, a marker beside them, and the
+/// left hand not tracked at frame 10.
+fn motive_export() -> String {
+    let mut text = String::from(
+        "Format Version,1.22,Take Name,Take 1,Capture Frame Rate,120.000000,\
+         Rotation Type,Quaternion,Length Units,Millimeters,Coordinate Space,Global\n\n",
+    );
+    let row = |cells: Vec<String>| format!(",,{}\n", cells.join(","));
+    let mut types = vec!["Rigid Body".to_owned(); 14];
+    types.extend(vec!["Marker".to_owned(); 3]);
+    let mut names = vec!["left_hand".to_owned(); 7];
+    names.extend(vec!["right_hand".to_owned(); 7]);
+    names.extend(vec!["wrist".to_owned(); 3]);
+    let group = |g: &str, n: usize| vec![g.to_owned(); n];
+    let groups = [
+        group("Rotation", 4),
+        group("Position", 3),
+        group("Rotation", 4),
+        group("Position", 3),
+        group("Position", 3),
+    ]
+    .concat();
+    text += &row(types);
+    text += &row(names);
+    text += &row(vec!["\"1\"".to_owned(); 17]);
+    text += &row(groups);
+    text += "Frame,Time (Seconds),X,Y,Z,W,X,Y,Z,X,Y,Z,W,X,Y,Z,X,Y,Z\n";
+    for i in 0..=240 {
+        let t = i as f64 / 120.0;
+        let s = mj(t / 2.0);
+        let hand = |x: f64| format!("0,0,0,1,{x:.3},{:.3},{:.3}", 1000.0 + 150.0 * s, -300.0 * s);
+        let left = if i == 10 {
+            ",,,,,,".to_owned()
+        } else {
+            hand(-200.0)
+        };
+        text += &format!("{i},{t:.6},{left},{},5,5,5\n", hand(200.0));
+    }
+    text
+}
+
+#[test]
+fn a_motive_export_gives_a_demo_per_rigid_body_in_metres() {
+    let dir = tmp_path("motive");
+    std::fs::create_dir_all(&dir).expect("folder");
+    let file = dir.join("take.csv");
+    std::fs::write(&file, motive_export()).expect("write");
+    let file = file.to_str().expect("path");
+    let (out, err) = run(&["info", "--json", "--y-up", file]);
+    for said in [
+        "a Motive export (format 1.22): rigid bodies left_hand, right_hand \
+         (lengths in Millimeters as it declares, read as metres)",
+        "skipped 1 asset(s) that are not rigid bodies: wrist",
+        "left_hand: 1 of 241 frames without it (not tracked): left out",
+    ] {
+        assert!(err.contains(said), "{said}: {err}");
+    }
+    assert!(!err.contains("--y-up (the app's Loading"), "{err}");
+    let demos: Value = serde_json::from_str(&out).expect("json");
+    let demos = demos.as_array().expect("list");
+    let names: Vec<&str> = demos.iter().filter_map(|d| d["name"].as_str()).collect();
+    assert_eq!(names, ["take.csv:left_hand", "take.csv:right_hand"]);
+    // y up to z up: (x, y, z) -> (-z, -x, y), in metres: 0.3 m forward, 0.15 m up.
+    let right = &demos[1];
+    let (s, g) = (&right["start"], &right["goal"]);
+    let d: Vec<f64> = (0..3)
+        .map(|a| g[a].as_f64().unwrap_or(f64::NAN) - s[a].as_f64().unwrap_or(f64::NAN))
+        .collect();
+    assert!(
+        (d[0] - 0.3).abs() < 1e-6 && d[1].abs() < 1e-9 && (d[2] - 0.15).abs() < 1e-6,
+        "{d:?}"
+    );
+    assert_eq!(demos[0]["n_samples"], 240);
+    // Without --y-up it is read z-up, and said.
+    let (_, err) = run(&["info", file]);
+    assert!(
+        err.contains("Motive exports y-up unless set otherwise: --y-up"),
+        "{err}"
+    );
+}

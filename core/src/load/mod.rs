@@ -1,7 +1,7 @@
 //! Load: recordings read into raw demonstrations (method.md sections 1,
 //! 12 and 13). A source (a file, a folder, bytes) is recognised by
 //! [`formats`], read by its reader ([`mcap`], [`rosbag1`], [`rosbag2`],
-//! [`csv`]), each message decoded by [`decode`] into pose samples, and the
+//! [`csv`], OptiTrack Motive's CSV export [`motive`]), each message decoded by [`decode`] into pose samples, and the
 //! samples gathered by [`collect`] into one [`demo::RawDemo`] per topic and
 //! key, with TF ([`tf`]), units ([`units`]) and orientation checks
 //! ([`orientation_check`]) applied. [`options`] is what the user asks of
@@ -18,6 +18,7 @@ pub mod demo;
 pub mod flags;
 pub mod formats;
 pub mod mcap;
+pub mod motive;
 pub mod options;
 pub mod orientation_check;
 pub mod rosbag1;

@@ -14,7 +14,8 @@ use crate::load::demo::RawDemo;
 use crate::load::formats;
 use crate::load::formats::Reader;
 use crate::load::mcap::{RECORD_LENGTH_LIMIT, read_mcap};
-use crate::load::options::LoadOptions;
+use crate::load::motive;
+use crate::load::options::{LoadOptions, UpAxis};
 use crate::load::rosbag1::read_bag;
 use crate::load::rosbag2;
 use crate::load::rosbag2::{Folder, ROSBAG2_METADATA};
@@ -282,16 +283,32 @@ pub fn folder_of_metadata(path: &Path) -> Option<&Path> {
     is_metadata.then(|| path.parent()).flatten()
 }
 
+/// A CSV file's demos: Motive's export (a stream per rigid body) or a
+/// plain `t,x,y,z` file (one demo).
 fn csv_demo(name: &str, text: &str, options: &LoadOptions) -> Result<SourceStreams> {
-    let mut demo = load_csv(name, text)?;
-    for p in &mut demo.positions {
-        *p = options.up.to_z_up((*p).into()).into();
-    }
-    for q in demo.orientations.iter_mut().flatten() {
-        *q = options.up.orientation_to_z_up(*q);
+    let (mut demos, notices) = if motive::is_motive(text) {
+        let (demos, mut notices) = motive::load_motive(name, text)?;
+        if options.up == UpAxis::ZUp {
+            notices.push(Notice::info(format!(
+                "{name}: read z-up; Motive exports y-up unless set otherwise: --y-up \
+                 (the app's Loading: up axis) turns it z-up"
+            )));
+        }
+        (demos, notices)
+    } else {
+        (vec![load_csv(name, text)?], Vec::new())
+    };
+    for demo in &mut demos {
+        for p in &mut demo.positions {
+            *p = options.up.to_z_up((*p).into()).into();
+        }
+        for q in demo.orientations.iter_mut().flatten() {
+            *q = options.up.orientation_to_z_up(*q);
+        }
     }
     Ok(SourceStreams {
-        demos: vec![demo],
+        demos,
+        notices,
         ..SourceStreams::default()
     })
 }
