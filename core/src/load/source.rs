@@ -184,7 +184,7 @@ fn load_folder(folder: &Path, options: &LoadOptions) -> Result<SourceStreams> {
                     // table, notes) does not stop the folder.
                     Err(e @ (Error::Decode { .. } | Error::NonFinite { .. })) if is_csv => {
                         out.notices.push(Notice::warning(format!(
-                            "{e}: skipped (not a t,x,y,z demonstration)"
+                            "{e}: skipped (not a t,x,y,z demonstration nor a readable Motive export)"
                         )));
                         continue;
                     }
